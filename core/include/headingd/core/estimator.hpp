@@ -1,0 +1,84 @@
+#pragma once
+// The whole attitude and magnetic-heading estimator: pure and deterministic (same samples
+// in, same estimates out), no I/O, no clocks. Per sample:
+//   gate (timestamps, NaN) → gyro bias (rest) → EKF predict (Henriksson eq. 3.2-3.3)
+//   → d_k and R level (eq. 3.1, 3.4, hysteresis) → back-tracking on a step up (§3.1)
+//   → EKF gravity update (eq. 3.5-3.8) → magnetometer heading observer (eq. 4.2)
+//   → background gyro-only attitudes (§3.1, eq. 4.4) → heading definition (§3.3).
+#include <cstdint>
+
+#include "headingd/core/accel_disturbance.hpp"
+#include "headingd/core/attitude_ekf.hpp"
+#include "headingd/core/background_attitudes.hpp"
+#include "headingd/core/estimator_params.hpp"
+#include "headingd/core/gyro_bias_estimator.hpp"
+#include "headingd/core/heading_definition.hpp"
+#include "headingd/core/imu_sample.hpp"
+#include "headingd/core/sample_gate.hpp"
+
+namespace headingd::core {
+
+struct EstimatorOutput {
+  bool valid = false;  // false until the first usable sample
+  std::int64_t t_ns = 0;
+  Quat q_nb = Quat::Identity();
+  EulerAngles euler{0.0, 0.0, 0.0};  // yaw = heading of the body x-axis from magnetic north
+  // Heading by the definition in use: ψ (x-axis) or, lying down, ψ_rd (-z axis, §3.3).
+  double heading_rad = 0.0;
+  bool heading_redefined = false;
+  double head_height = 1.0;  // h(q), eq. 3.12
+  MotionLevel motion_level = MotionLevel::kStanding;
+  double accel_disturbance = 0.0;  // d_k, (m/s²)²
+  Vec3 gyro_bias_rad_s = Vec3::Zero();
+  bool at_rest = false;
+  bool mag_used = false;
+  double mag_gain = 0.0;             // K of eq. 4.2 this sample
+  double mag_innovation_rad = 0.0;   // ψ_mm - ψ_pred
+};
+
+struct EstimatorCounters {
+  SampleCounters samples;
+  std::uint64_t backtracks = 0;          // R stepped up and the background attitude took over
+  std::uint64_t mag_no_heading = 0;      // field too close to vertical for a heading
+  std::uint64_t state_recoveries = 0;    // a non-finite state was replaced (never expected)
+};
+
+class Estimator {
+ public:
+  explicit Estimator(const EstimatorParams& params = {});
+
+  // Processes one sample and returns what the gate decided. A skipped sample leaves the
+  // output as it was.
+  SampleVerdict process(const ImuSample& sample);
+
+  const EstimatorOutput& output() const { return out_; }
+  EstimatorCounters counters() const;
+  const EstimatorParams& params() const { return p_; }
+  const AttitudeEkf& ekf() const { return ekf_; }
+
+ private:
+  void initialise(const ImuSample& s, bool mag_usable);
+  void step(const ImuSample& s, double dt_s, bool mag_usable);
+  void correctHeading(const Vec3& mag_uT, double dt_s);
+  void publish(std::int64_t t_ns);
+
+  EstimatorParams p_;
+  SampleGate gate_;
+  GyroBiasEstimator bias_;
+  AttitudeEkf ekf_;
+  AccelDisturbanceLevel disturbance_;
+  MotionLevelSelector motion_;
+  BackgroundAttitudes background_;
+  HeadingDefinitionSelector heading_definition_;
+  bool initialised_ = false;
+  bool heading_aligned_ = false;
+  EstimatorOutput out_;
+  std::uint64_t backtracks_ = 0;
+  std::uint64_t mag_no_heading_ = 0;
+  std::uint64_t state_recoveries_ = 0;
+};
+
+// Attitude from one accelerometer (tilt) and, if given, magnetometer (heading) sample.
+Quat attitudeFromGravityAndField(const Vec3& accel_m_s2, const Vec3* mag_uT);
+
+}  // namespace headingd::core

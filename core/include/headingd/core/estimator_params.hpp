@@ -1,0 +1,72 @@
+#pragma once
+// Every tuning constant of the estimator, in SI units, with its default and where it comes
+// from. Loaded from the [estimator] table of a TOML file by parseEstimatorParams
+// (params_toml.hpp); config/estimator.toml lists every key with its default.
+//
+// Translating Henriksson's r = 1e7 … 1e9: the thesis sets R_k = r·I (§3.1, §6.2) but gives
+// neither the unit of its accelerometer samples nor its process noise Q, and only the ratio
+// of R to Q shapes an EKF. What carries over is (a) the d_k thresholds, which eq. 3.4
+// writes with |g| = 9.81, i.e. in (m/s²)²: up at 2 and 40, down at 1 and 20; and (b) the
+// factor 10 between consecutive levels of r. We therefore express R as the standard
+// deviation of the accelerometer's gravity measurement in m/s², set the standing level
+// from the data (our Q is the gyroscope's white noise in rad/s), and keep the thesis'
+// factor of 10 in variance (√10 in σ) between standing, walking and running.
+#include <cstdint>
+
+namespace headingd::core {
+
+struct EstimatorParams {
+  // --- Sample handling (issue 3, item 7) ---
+  // Samples further apart than this are a gap: the gyro is not integrated across it.
+  double max_sample_gap_s = 0.1;
+
+  // --- Gyroscope noise for Q_k (Henriksson eq. 3.3) ---
+  // White noise of the bias-corrected angular rate, rad/s per sample (1σ).
+  double gyro_noise_rad_s = 0.004;
+
+  // --- Accelerometer disturbance level d_k (Henriksson eq. 3.1, 2.17) ---
+  double gravity_m_s2 = 9.81;
+  // Time constant of the low-pass filter of (|a| - g)²; the thesis uses 1 s.
+  double accel_disturbance_time_constant_s = 1.0;
+
+  // --- R_k levels with hysteresis (Henriksson §3.1, §6.2) ---
+  // Gravity measurement noise (1σ, m/s²) for the standing, walking and running levels.
+  double accel_noise_standing_m_s2 = 0.5;
+  double accel_noise_walking_m_s2 = 1.58;   // standing · √10 (thesis: r ×10)
+  double accel_noise_running_m_s2 = 5.0;    // walking · √10
+  // d_k thresholds in (m/s²)² (thesis §6.2): step up above, step down below.
+  double disturbance_up_to_walking = 2.0;
+  double disturbance_up_to_running = 40.0;
+  double disturbance_down_to_standing = 1.0;
+  double disturbance_down_to_walking = 20.0;
+
+  // --- Background gyro-only attitudes (end of Henriksson §3.1) ---
+  // Each background quaternion is reset from the estimate this often; the two are
+  // staggered by half a period.
+  double backup_reset_period_s = 10.0;
+
+  // --- Heading redefinition for lying-down poses (Henriksson §3.3, §6.2) ---
+  // h(q) below enter: use ψ_rd; above leave: back to ψ.
+  double redefine_heading_enter = 0.6;
+  double redefine_heading_leave = 0.7;
+
+  // --- Magnetometer heading observer (Henriksson eq. 4.2) ---
+  // K = 1 - exp(-dt/τ): the magnetometer pulls the heading with this time constant.
+  double mag_heading_time_constant_s = 10.0;
+  // The horizontal field must be at least this share of the total field for a heading.
+  double mag_min_horizontal_fraction = 0.1;
+
+  // --- Gyroscope bias from rest (issue 3, item 5) ---
+  // Rest: for rest_min_duration_s, |ω - ω̄| and |a - ā| stay within these bounds, where
+  // ω̄, ā are low-passed with rest_filter_time_constant_s.
+  double rest_gyro_threshold_rad_s = 0.035;   // 2 deg/s
+  double rest_accel_threshold_m_s2 = 0.5;
+  double rest_min_duration_s = 1.5;
+  double rest_filter_time_constant_s = 0.5;
+  // Time constant of the bias low-pass while at rest.
+  double bias_time_constant_s = 3.0;
+  // The bias estimate is clamped to this magnitude (a larger one means rest was misjudged).
+  double bias_max_rad_s = 0.1;
+};
+
+}  // namespace headingd::core

@@ -1,0 +1,55 @@
+#pragma once
+// Gyroscope bias from rest.
+//
+// Method: a rest detector (gyro and accelerometer both steady over a window) gates a
+// low-pass filter of the raw gyro. Why this one: at rest the true rate is zero (Earth's
+// 15°/h is far below the noise of body-worn MEMS gyros), so the mean rate *is* the bias and
+// needs no model; a person wearing the device stands still often (traffic lights, pauses),
+// and BROAD's trials begin and end at rest. Estimating the bias in motion needs an
+// observable reference (accelerometer for roll/pitch, magnetometer for yaw) whose errors
+// (accelerations, disturbed fields) would leak into the bias; that is the MAGYQ work of a
+// later roadmap step. Between rests the last estimate is held.
+#include "headingd/core/estimator_params.hpp"
+#include "headingd/core/low_pass.hpp"
+#include "headingd/core/quaternion.hpp"
+
+namespace headingd::core {
+
+// Rest: for at least rest_min_duration_s, each sample's gyro and accelerometer stay close
+// to their low-passed values, and the low-passed rate itself is small (a slow steady turn is
+// not rest).
+class RestDetector {
+ public:
+  explicit RestDetector(const EstimatorParams& p)
+      : p_(p), gyro_mean_(p.rest_filter_time_constant_s), accel_mean_(p.rest_filter_time_constant_s) {}
+  // current_bias: the rate that counts as zero (a bias larger than the threshold must not
+  // keep the detector from ever seeing rest).
+  bool update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3& current_bias, double dt_s);
+  bool atRest() const { return rest_time_s_ >= p_.rest_min_duration_s; }
+
+ private:
+  const EstimatorParams& p_;
+  LowPass<Vec3> gyro_mean_;
+  LowPass<Vec3> accel_mean_;
+  double rest_time_s_ = 0.0;
+};
+
+class GyroBiasEstimator {
+ public:
+  explicit GyroBiasEstimator(const EstimatorParams& p) : p_(p), rest_(p) {}
+
+  // Feeds one raw sample; returns the current bias estimate.
+  const Vec3& update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s);
+  const Vec3& bias() const { return bias_; }
+  bool atRest() const { return rest_.atRest(); }
+  // Seconds of rest the estimate is built on (0 until the first rest).
+  double restSeconds() const { return rest_seconds_; }
+
+ private:
+  const EstimatorParams& p_;
+  RestDetector rest_;
+  Vec3 bias_ = Vec3::Zero();
+  double rest_seconds_ = 0.0;
+};
+
+}  // namespace headingd::core

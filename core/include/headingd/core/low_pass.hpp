@@ -1,0 +1,42 @@
+#pragma once
+// First-order low-pass filter of Henriksson §2.3.
+#include <cmath>
+
+namespace headingd::core {
+
+// Henriksson eq. 2.17: α for time constant τ at the actual sample period T_s, so that the
+// filter keeps its time constant when the sample rate differs from the thesis' 121 Hz.
+inline double lowPassAlpha(double sample_period_s, double time_constant_s) {
+  return std::exp(-sample_period_s / (time_constant_s + sample_period_s));
+}
+
+// Henriksson eq. 2.13: y[k] = α y[k-1] + (1-α) x[k]. The first input initialises y.
+template <typename T>
+class LowPass {
+ public:
+  explicit LowPass(double time_constant_s) : time_constant_s_(time_constant_s) {}
+
+  const T& update(const T& x, double sample_period_s) {
+    if (!initialised_) {
+      y_ = x;
+      initialised_ = true;
+    } else {
+      const double alpha = lowPassAlpha(sample_period_s, time_constant_s_);
+      y_ = alpha * y_ + (1.0 - alpha) * x;
+    }
+    return y_;
+  }
+  const T& value() const { return y_; }
+  bool initialised() const { return initialised_; }
+  void reset(const T& y) {
+    y_ = y;
+    initialised_ = true;
+  }
+
+ private:
+  double time_constant_s_;
+  T y_{};
+  bool initialised_ = false;
+};
+
+}  // namespace headingd::core

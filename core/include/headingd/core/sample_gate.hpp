@@ -1,0 +1,48 @@
+#pragma once
+// Decides whether a sample can be used and over which period (issue 3, item 7). The sample
+// period always comes from the timestamps, never from a nominal rate.
+#include <cstdint>
+
+#include "headingd/core/imu_sample.hpp"
+
+namespace headingd::core {
+
+enum class SampleVerdict {
+  kAccepted,        // use it, integrating the gyro over the returned period
+  kFirst,           // first usable sample: starts the time base, nothing to integrate yet
+  kGap,             // time jumped forward by more than the gap limit: restart the time base
+  kClockJump,       // time jumped backwards by more than the gap limit: restart the time base
+  kDuplicateTime,   // same timestamp as the last sample: skipped
+  kBackwardsTime,   // slightly older than the last sample: skipped
+  kNonFinite,       // NaN/Inf in gyro or accelerometer: skipped
+};
+
+const char* sampleVerdictName(SampleVerdict v);
+
+struct SampleCounters {
+  std::uint64_t accepted = 0;
+  std::uint64_t gaps = 0;
+  std::uint64_t clock_jumps = 0;
+  std::uint64_t duplicate_time = 0;
+  std::uint64_t backwards_time = 0;
+  std::uint64_t non_finite = 0;
+  std::uint64_t non_finite_mag = 0;  // magnetometer dropped, gyro and accelerometer used
+};
+
+class SampleGate {
+ public:
+  explicit SampleGate(double max_gap_s) : max_gap_ns_(static_cast<std::int64_t>(max_gap_s * 1e9)) {}
+
+  // Returns the verdict; for kAccepted, *dt_s is the period since the last used sample.
+  // A sample whose magnetometer alone is non-finite is accepted with *mag_usable = false.
+  SampleVerdict check(const ImuSample& s, double* dt_s, bool* mag_usable);
+  const SampleCounters& counters() const { return counters_; }
+
+ private:
+  std::int64_t max_gap_ns_;
+  std::int64_t last_t_ns_ = 0;
+  bool started_ = false;
+  SampleCounters counters_;
+};
+
+}  // namespace headingd::core

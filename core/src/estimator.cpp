@@ -1,0 +1,140 @@
+#include "headingd/core/estimator.hpp"
+
+#include <cmath>
+
+#include "headingd/core/mag_heading_observer.hpp"
+
+namespace headingd::core {
+
+Quat attitudeFromGravityAndField(const Vec3& accel_m_s2, const Vec3* mag_uT) {
+  // At rest the accelerometer reads -g, i.e. "up"; body "down" is its opposite.
+  const Vec3 down_b = -accel_m_s2.normalized();
+  // The shortest rotation taking body down onto NED down gives roll and pitch, heading 0.
+  Quat q_nb = Quat::FromTwoVectors(down_b, Vec3::UnitZ());
+  if (mag_uT != nullptr) {
+    const auto m = measureMagHeading(q_nb, *mag_uT, 0.0);
+    if (m.valid) q_nb = applyHeadingCorrection(q_nb, m.innovation_rad, 1.0);
+  }
+  return q_nb;
+}
+
+Estimator::Estimator(const EstimatorParams& params)
+    : p_(params),
+      gate_(p_.max_sample_gap_s),
+      bias_(p_),
+      disturbance_(p_.gravity_m_s2, p_.accel_disturbance_time_constant_s),
+      motion_(p_),
+      background_(p_.backup_reset_period_s),
+      heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave) {}
+
+SampleVerdict Estimator::process(const ImuSample& s) {
+  double dt_s = 0.0;
+  bool mag_usable = false;
+  const SampleVerdict verdict = gate_.check(s, &dt_s, &mag_usable);
+  switch (verdict) {
+    case SampleVerdict::kAccepted:
+      if (initialised_) {
+        step(s, dt_s, mag_usable);
+      } else {
+        initialise(s, mag_usable);
+      }
+      break;
+    case SampleVerdict::kFirst:
+      initialise(s, mag_usable);
+      break;
+    case SampleVerdict::kGap:
+    case SampleVerdict::kClockJump:
+      // The attitude is kept (the gyro just cannot be integrated across the hole); the
+      // background attitudes restart so that no back-tracking reaches across it.
+      if (initialised_) background_.restart(ekf_.attitude());
+      publish(s.t_ns);
+      break;
+    default:
+      break;  // skipped and counted by the gate; the output stays as it was
+  }
+  return verdict;
+}
+
+void Estimator::initialise(const ImuSample& s, bool mag_usable) {
+  if (s.accel_m_s2.norm() < 0.1 * p_.gravity_m_s2) return;  // no usable gravity direction yet
+  ekf_.setAttitude(attitudeFromGravityAndField(s.accel_m_s2, mag_usable ? &s.mag_uT : nullptr));
+  // A start from a measured tilt is good to a few degrees: P ~ (0.05)² per component instead
+  // of Algorithm 2's 1000·I, which would let the first accelerometer samples throw it around.
+  ekf_.setCovariance(0.05 * 0.05 * Mat4::Identity());
+  background_.restart(ekf_.attitude());
+  heading_aligned_ = mag_usable;
+  initialised_ = true;
+  publish(s.t_ns);
+}
+
+void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
+  const Vec4 previous_state = ekf_.state();
+  const Mat4 previous_covariance = ekf_.covariance();
+
+  const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, dt_s);
+  ekf_.predict(gyro, dt_s, p_.gyro_noise_rad_s);
+
+  const MotionLevel before = motion_.level();
+  const MotionLevel level = motion_.update(disturbance_.update(s.accel_m_s2, dt_s));
+  if (level > before) {
+    // §3.1: the accelerometer has been disturbed for a while already; the gyro-only attitude
+    // from before that time replaces the estimate.
+    ekf_.setAttitude(background_.oldest());
+    ++backtracks_;
+  }
+  ekf_.updateGravity(s.accel_m_s2, accelNoiseFor(level, p_), p_.gravity_m_s2);
+
+  out_.mag_used = false;
+  out_.mag_gain = 0.0;
+  if (mag_usable) correctHeading(s.mag_uT, dt_s);
+
+  if (!ekf_.state().allFinite() || !ekf_.covariance().allFinite()) {
+    // Never expected (every input is finite by now); if it happens, keep the last good state.
+    ekf_.setAttitude(fromWxyz(previous_state));
+    ekf_.setCovariance(previous_covariance);
+    ++state_recoveries_;
+  }
+  background_.update(gyro, dt_s, ekf_.attitude());
+  publish(s.t_ns);
+}
+
+void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
+  const auto m = measureMagHeading(ekf_.attitude(), mag_uT, p_.mag_min_horizontal_fraction);
+  if (!m.valid) {
+    ++mag_no_heading_;
+    return;
+  }
+  // The first usable field sets the heading outright; after that, eq. 4.2.
+  const double gain = heading_aligned_ ? magObserverGain(dt_s, p_.mag_heading_time_constant_s) : 1.0;
+  heading_aligned_ = true;
+  ekf_.setAttitude(applyHeadingCorrection(ekf_.attitude(), m.innovation_rad, gain));
+  out_.mag_used = true;
+  out_.mag_gain = gain;
+  out_.mag_innovation_rad = m.innovation_rad;
+}
+
+void Estimator::publish(std::int64_t t_ns) {
+  const Quat q = ekf_.attitude();
+  out_.valid = true;
+  out_.t_ns = t_ns;
+  out_.q_nb = q;
+  out_.euler = eulerZyx(q);
+  out_.head_height = headHeight(q);
+  out_.heading_redefined = heading_definition_.update(q);
+  out_.heading_rad = out_.heading_redefined ? redefinedHeadingOf(q) : out_.euler.yaw_rad;
+  out_.motion_level = motion_.level();
+  out_.accel_disturbance = disturbance_.value();
+  out_.gyro_bias_rad_s = bias_.bias();
+  out_.at_rest = bias_.atRest();
+}
+
+EstimatorCounters Estimator::counters() const {
+  EstimatorCounters c;
+  c.samples = gate_.counters();
+  c.backtracks = backtracks_;
+  c.mag_no_heading = mag_no_heading_;
+  c.state_recoveries = state_recoveries_;
+  return c;
+}
+
+}  // namespace headingd::core

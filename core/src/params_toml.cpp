@@ -1,0 +1,111 @@
+#include "headingd/core/params_toml.hpp"
+
+#include <limits>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace headingd::core {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string where(const std::string& source, const toml::source_region& r) {
+  std::ostringstream o;
+  o << source << ":" << r.begin.line;
+  return o.str();
+}
+
+}  // namespace
+
+const std::vector<ParamSpec>& estimatorParamSpecs() {
+  using P = EstimatorParams;
+  static const std::vector<ParamSpec> specs = {
+      {"max_sample_gap_s", &P::max_sample_gap_s, 1e-4, 10.0, "s"},
+      {"gyro_noise_rad_s", &P::gyro_noise_rad_s, 1e-7, 1.0, "rad/s"},
+      {"gravity_m_s2", &P::gravity_m_s2, 9.7, 9.9, "m/s^2"},
+      {"accel_disturbance_time_constant_s", &P::accel_disturbance_time_constant_s, 1e-3, 100.0, "s"},
+      {"accel_noise_standing_m_s2", &P::accel_noise_standing_m_s2, 1e-4, 1e3, "m/s^2"},
+      {"accel_noise_walking_m_s2", &P::accel_noise_walking_m_s2, 1e-4, 1e3, "m/s^2"},
+      {"accel_noise_running_m_s2", &P::accel_noise_running_m_s2, 1e-4, 1e3, "m/s^2"},
+      {"disturbance_up_to_walking", &P::disturbance_up_to_walking, 0.0, 1e4, "(m/s^2)^2"},
+      {"disturbance_up_to_running", &P::disturbance_up_to_running, 0.0, 1e4, "(m/s^2)^2"},
+      {"disturbance_down_to_standing", &P::disturbance_down_to_standing, 0.0, 1e4, "(m/s^2)^2"},
+      {"disturbance_down_to_walking", &P::disturbance_down_to_walking, 0.0, 1e4, "(m/s^2)^2"},
+      {"backup_reset_period_s", &P::backup_reset_period_s, 0.1, 600.0, "s"},
+      {"redefine_heading_enter", &P::redefine_heading_enter, -1.0, 1.0, "h(q)"},
+      {"redefine_heading_leave", &P::redefine_heading_leave, -1.0, 1.0, "h(q)"},
+      {"mag_heading_time_constant_s", &P::mag_heading_time_constant_s, 1e-3, kInf, "s"},
+      {"mag_min_horizontal_fraction", &P::mag_min_horizontal_fraction, 0.0, 1.0, "1"},
+      {"rest_gyro_threshold_rad_s", &P::rest_gyro_threshold_rad_s, 0.0, 1.0, "rad/s"},
+      {"rest_accel_threshold_m_s2", &P::rest_accel_threshold_m_s2, 0.0, 10.0, "m/s^2"},
+      {"rest_min_duration_s", &P::rest_min_duration_s, 0.0, 60.0, "s"},
+      {"rest_filter_time_constant_s", &P::rest_filter_time_constant_s, 1e-3, 60.0, "s"},
+      {"bias_time_constant_s", &P::bias_time_constant_s, 1e-3, 3600.0, "s"},
+      {"bias_max_rad_s", &P::bias_max_rad_s, 0.0, 1.0, "rad/s"},
+  };
+  return specs;
+}
+
+EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::string& source) {
+  toml::table doc;
+  try {
+    doc = toml::parse(toml_text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream o;
+    o << where(source, e.source()) << ": TOML syntax error: " << e.description();
+    throw ConfigError(o.str());
+  }
+  EstimatorParams p;
+  for (auto&& [top_key, top_node] : doc) {
+    if (top_key.str() != "estimator") {
+      throw ConfigError(where(source, top_node.source()) + ": unknown table or key '" + std::string(top_key.str()) +
+                        "' (expected [estimator])");
+    }
+  }
+  const toml::table* table = doc["estimator"].as_table();
+  if (table == nullptr) {
+    if (doc.contains("estimator")) throw ConfigError(source + ": 'estimator' must be a table");
+    return p;
+  }
+  const auto& specs = estimatorParamSpecs();
+  for (auto&& [key, node] : *table) {
+    const ParamSpec* spec = nullptr;
+    for (const auto& s : specs) {
+      if (key.str() == s.key) spec = &s;
+    }
+    const std::string at = where(source, node.source()) + ": [estimator] " + std::string(key.str());
+    if (spec == nullptr) throw ConfigError(at + ": unknown key (see config/estimator.toml for the list)");
+    const std::optional<double> value = node.value<double>();  // integers convert too
+    if (!value || !(node.is_floating_point() || node.is_integer())) {
+      throw ConfigError(at + ": expected a number in " + spec->unit);
+    }
+    if (!(*value >= spec->min && *value <= spec->max)) {
+      std::ostringstream o;
+      o << at << ": " << *value << " is out of range, expected " << spec->min << " .. " << spec->max << " "
+        << spec->unit;
+      throw ConfigError(o.str());
+    }
+    p.*(spec->member) = *value;
+  }
+  validateEstimatorParams(p, source);
+  return p;
+}
+
+void validateEstimatorParams(const EstimatorParams& p, const std::string& source) {
+  auto require = [&](bool ok, const char* what) {
+    if (!ok) throw ConfigError(source + ": [estimator] " + what);
+  };
+  require(p.disturbance_down_to_standing < p.disturbance_up_to_walking,
+          "disturbance_down_to_standing must be below disturbance_up_to_walking (hysteresis)");
+  require(p.disturbance_down_to_walking < p.disturbance_up_to_running,
+          "disturbance_down_to_walking must be below disturbance_up_to_running (hysteresis)");
+  require(p.disturbance_up_to_walking < p.disturbance_up_to_running,
+          "disturbance_up_to_walking must be below disturbance_up_to_running");
+  require(p.accel_noise_standing_m_s2 <= p.accel_noise_walking_m_s2 &&
+              p.accel_noise_walking_m_s2 <= p.accel_noise_running_m_s2,
+          "accel_noise_* must not decrease from standing to walking to running");
+  require(p.redefine_heading_enter < p.redefine_heading_leave,
+          "redefine_heading_enter must be below redefine_heading_leave (hysteresis)");
+}
+
+}  // namespace headingd::core

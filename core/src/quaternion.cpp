@@ -1,0 +1,80 @@
+#include "headingd/core/quaternion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace headingd::core {
+
+Vec4 toWxyz(const Quat& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+
+Quat fromWxyz(const Vec4& q) { return Quat(q(0), q(1), q(2), q(3)); }
+
+Mat4 omegaMatrix(const Vec3& w) {
+  Mat4 m;
+  m << 0.0, -w.x(), -w.y(), -w.z(),  //
+      w.x(), 0.0, w.z(), -w.y(),     //
+      w.y(), -w.z(), 0.0, w.x(),     //
+      w.z(), w.y(), -w.x(), 0.0;
+  return m;
+}
+
+Mat4 gyroTransition(const Vec3& gyro_rad_s, double dt_s) {
+  // Ω(ω)² = -|ω|² I, so exp(½ Ω dt) = cos(½|ω|dt) I + sin(½|ω|dt)/|ω| Ω.
+  const double rate = gyro_rad_s.norm();
+  const double half_angle = 0.5 * rate * dt_s;
+  // sin(x)/rate written as (dt/2)·sinc(x) so that a zero rate needs no special case.
+  const double sinc = half_angle < 1e-8 ? 1.0 - half_angle * half_angle / 6.0 : std::sin(half_angle) / half_angle;
+  return std::cos(half_angle) * Mat4::Identity() + (0.5 * dt_s * sinc) * omegaMatrix(gyro_rad_s);
+}
+
+Mat43 rightProductMatrix(const Vec4& q) {
+  Mat43 m;
+  m << -q(1), -q(2), -q(3),  //
+      q(0), -q(3), q(2),     //
+      q(3), q(0), -q(1),     //
+      -q(2), q(1), q(0);
+  return m;
+}
+
+Vec3 rotateEarthToBody(const Vec4& q, const Vec3& v) {
+  const double q0 = q(0), q1 = q(1), q2 = q(2), q3 = q(3);
+  Mat3 m;  // Henriksson eq. 2.30
+  m << q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 + q0 * q3), 2 * (q1 * q3 - q0 * q2),
+      2 * (q1 * q2 - q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 + q0 * q1),
+      2 * (q0 * q2 + q1 * q3), 2 * (q2 * q3 - q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
+  return m * v;
+}
+
+Mat34 rotateEarthToBodyJacobian(const Vec4& q, const Vec3& v) {
+  const double q0 = q(0), q1 = q(1), q2 = q(2), q3 = q(3);
+  const double x = v.x(), y = v.y(), z = v.z();
+  Mat34 h;
+  // Column j is (∂M/∂q_j) v; each row is the scalar product of eq. 2.32, times 2.
+  h << q0 * x + q3 * y - q2 * z, q1 * x + q2 * y + q3 * z, -q2 * x + q1 * y - q0 * z, -q3 * x + q0 * y + q1 * z,
+      -q3 * x + q0 * y + q1 * z, q2 * x - q1 * y + q0 * z, q1 * x + q2 * y + q3 * z, -q0 * x - q3 * y + q2 * z,
+      q2 * x - q1 * y + q0 * z, q3 * x - q0 * y - q1 * z, q0 * x + q3 * y - q2 * z, q1 * x + q2 * y + q3 * z;
+  return 2.0 * h;
+}
+
+EulerAngles eulerZyx(const Quat& q_nb) {
+  const double q0 = q_nb.w(), q1 = q_nb.x(), q2 = q_nb.y(), q3 = q_nb.z();
+  const double sin_pitch = std::clamp(2.0 * (q0 * q2 - q1 * q3), -1.0, 1.0);
+  return {std::atan2(2.0 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3), std::asin(sin_pitch),
+          std::atan2(2.0 * (q1 * q2 + q0 * q3), q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3)};
+}
+
+Quat headingRotation(double angle_rad) { return Quat(Eigen::AngleAxisd(angle_rad, Vec3::UnitZ())); }
+
+double wrapAngle(double a) {
+  constexpr double kPi = std::numbers::pi;
+  a = std::remainder(a, 2.0 * kPi);  // [-π, π]
+  return a <= -kPi ? a + 2.0 * kPi : a;
+}
+
+Quat nedToEnu(const Quat& q_nb) {
+  const double h = std::sqrt(0.5);
+  return Quat(0.0, h, h, 0.0) * q_nb;
+}
+
+}  // namespace headingd::core
