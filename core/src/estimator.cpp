@@ -1,5 +1,6 @@
 #include "headingd/core/estimator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "headingd/core/mag_heading_observer.hpp"
@@ -23,9 +24,12 @@ Estimator::Estimator(const EstimatorParams& params)
       gate_(p_.max_sample_gap_s),
       bias_(p_),
       disturbance_(p_.gravity_m_s2, p_.accel_disturbance_time_constant_s),
+      accel_prefilter_(p_.accel_prefilter_time_constant_s),
       motion_(p_),
       background_(p_.backup_reset_period_s),
-      heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave) {}
+      heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave),
+      mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
+                        p_.mag_max_dip_deviation_rad}) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
   double dt_s = 0.0;
@@ -47,6 +51,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       // The attitude is kept (the gyro just cannot be integrated across the hole); the
       // background attitudes restart so that no back-tracking reaches across it.
       if (initialised_) background_.restart(ekf_.attitude());
+      accel_prefilter_.restart();
       publish(s.t_ns);
       break;
     default:
@@ -72,7 +77,9 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   const Mat4 previous_covariance = ekf_.covariance();
 
   const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, dt_s);
-  ekf_.predict(gyro, dt_s, p_.gyro_noise_rad_s);
+  const double scale_noise = p_.gyro_scale_noise * gyro.norm();
+  ekf_.predict(gyro, dt_s, std::sqrt(p_.gyro_noise_rad_s * p_.gyro_noise_rad_s + scale_noise * scale_noise));
+  const Vec3 gravity_measurement = accel_prefilter_.update(gyro, s.accel_m_s2, dt_s);
 
   const MotionLevel before = motion_.level();
   const MotionLevel level = motion_.update(disturbance_.update(s.accel_m_s2, dt_s));
@@ -82,9 +89,10 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
     ekf_.setAttitude(background_.oldest());
     ++backtracks_;
   }
-  ekf_.updateGravity(s.accel_m_s2, accelNoiseFor(level, p_), p_.gravity_m_s2);
+  ekf_.updateGravity(gravity_measurement, accelNoiseFor(level, p_), p_.gravity_m_s2);
 
   out_.mag_used = false;
+  out_.mag_disturbed = false;
   out_.mag_gain = 0.0;
   if (mag_usable) correctHeading(s.mag_uT, dt_s);
 
@@ -104,8 +112,20 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
     ++mag_no_heading_;
     return;
   }
-  // The first usable field sets the heading outright; after that, eq. 4.2.
-  const double gain = heading_aligned_ ? magObserverGain(dt_s, p_.mag_heading_time_constant_s) : 1.0;
+  out_.mag_disturbed = mag_disturbance_.update(mag_uT.norm(), m.dip_rad, dt_s);
+  if (out_.mag_disturbed) {
+    ++mag_disturbed_;
+    out_.mag_innovation_rad = m.innovation_rad;
+    return;  // K = 0: the heading runs on the gyro (eq. 4.3)
+  }
+  // The first usable field sets the heading outright. Then eq. 4.2, with K no smaller than
+  // dt/t while t, the time since that first sample, is short: the observer starts as the
+  // running mean of its measurements instead of leaning on the first, noisy one.
+  double gain = 1.0;
+  if (heading_aligned_) {
+    mag_seconds_ += dt_s;
+    gain = std::max(magObserverGain(dt_s, p_.mag_heading_time_constant_s), dt_s / mag_seconds_);
+  }
   heading_aligned_ = true;
   ekf_.setAttitude(applyHeadingCorrection(ekf_.attitude(), m.innovation_rad, gain));
   out_.mag_used = true;
@@ -133,6 +153,7 @@ EstimatorCounters Estimator::counters() const {
   c.samples = gate_.counters();
   c.backtracks = backtracks_;
   c.mag_no_heading = mag_no_heading_;
+  c.mag_disturbed = mag_disturbed_;
   c.state_recoveries = state_recoveries_;
   return c;
 }

@@ -22,6 +22,8 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
   static const std::vector<ParamSpec> specs = {
       {"max_sample_gap_s", &P::max_sample_gap_s, 1e-4, 10.0, "s"},
       {"gyro_noise_rad_s", &P::gyro_noise_rad_s, 1e-7, 1.0, "rad/s"},
+      {"gyro_scale_noise", &P::gyro_scale_noise, 0.0, 1.0, "1"},
+      {"accel_prefilter_time_constant_s", &P::accel_prefilter_time_constant_s, 0.0, 100.0, "s"},
       {"gravity_m_s2", &P::gravity_m_s2, 9.7, 9.9, "m/s^2"},
       {"accel_disturbance_time_constant_s", &P::accel_disturbance_time_constant_s, 1e-3, 100.0, "s"},
       {"accel_noise_standing_m_s2", &P::accel_noise_standing_m_s2, 1e-4, 1e3, "m/s^2"},
@@ -36,6 +38,9 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"redefine_heading_leave", &P::redefine_heading_leave, -1.0, 1.0, "h(q)"},
       {"mag_heading_time_constant_s", &P::mag_heading_time_constant_s, 1e-3, kInf, "s"},
       {"mag_min_horizontal_fraction", &P::mag_min_horizontal_fraction, 0.0, 1.0, "1"},
+      {"mag_disturbance_time_constant_s", &P::mag_disturbance_time_constant_s, 1e-3, 600.0, "s"},
+      {"mag_max_norm_deviation_uT", &P::mag_max_norm_deviation_uT, 0.0, 1000.0, "uT"},
+      {"mag_max_dip_deviation_rad", &P::mag_max_dip_deviation_rad, 0.0, 3.2, "rad"},
       {"rest_gyro_threshold_rad_s", &P::rest_gyro_threshold_rad_s, 0.0, 1.0, "rad/s"},
       {"rest_accel_threshold_m_s2", &P::rest_accel_threshold_m_s2, 0.0, 10.0, "m/s^2"},
       {"rest_min_duration_s", &P::rest_min_duration_s, 0.0, 60.0, "s"},

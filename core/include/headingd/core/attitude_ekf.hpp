@@ -32,6 +32,7 @@ class AttitudeEkf {
 
  private:
   void normalise();
+  void keepHeadingOutOfTilt(const Vec4& q_prior);
 
   Vec4 q_;
   Mat4 P_;

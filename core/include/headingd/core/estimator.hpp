@@ -2,18 +2,20 @@
 // The whole attitude and magnetic-heading estimator: pure and deterministic (same samples
 // in, same estimates out), no I/O, no clocks. Per sample:
 //   gate (timestamps, NaN) → gyro bias (rest) → EKF predict (Henriksson eq. 3.2-3.3)
-//   → d_k and R level (eq. 3.1, 3.4, hysteresis) → back-tracking on a step up (§3.1)
+//   → accelerometer pre-filter (accel_prefilter.hpp) → d_k and R level (eq. 3.1, 3.4, hysteresis) → back-tracking on a step up (§3.1)
 //   → EKF gravity update (eq. 3.5-3.8) → magnetometer heading observer (eq. 4.2)
 //   → background gyro-only attitudes (§3.1, eq. 4.4) → heading definition (§3.3).
 #include <cstdint>
 
 #include "headingd/core/accel_disturbance.hpp"
+#include "headingd/core/accel_prefilter.hpp"
 #include "headingd/core/attitude_ekf.hpp"
 #include "headingd/core/background_attitudes.hpp"
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/gyro_bias_estimator.hpp"
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/core/imu_sample.hpp"
+#include "headingd/core/mag_disturbance.hpp"
 #include "headingd/core/sample_gate.hpp"
 
 namespace headingd::core {
@@ -32,6 +34,7 @@ struct EstimatorOutput {
   Vec3 gyro_bias_rad_s = Vec3::Zero();
   bool at_rest = false;
   bool mag_used = false;
+  bool mag_disturbed = false;
   double mag_gain = 0.0;             // K of eq. 4.2 this sample
   double mag_innovation_rad = 0.0;   // ψ_mm - ψ_pred
 };
@@ -40,6 +43,7 @@ struct EstimatorCounters {
   SampleCounters samples;
   std::uint64_t backtracks = 0;          // R stepped up and the background attitude took over
   std::uint64_t mag_no_heading = 0;      // field too close to vertical for a heading
+  std::uint64_t mag_disturbed = 0;       // samples with K = 0 for a disturbed field
   std::uint64_t state_recoveries = 0;    // a non-finite state was replaced (never expected)
 };
 
@@ -67,14 +71,18 @@ class Estimator {
   GyroBiasEstimator bias_;
   AttitudeEkf ekf_;
   AccelDisturbanceLevel disturbance_;
+  AccelPrefilter accel_prefilter_;
   MotionLevelSelector motion_;
   BackgroundAttitudes background_;
   HeadingDefinitionSelector heading_definition_;
+  MagDisturbanceDetector mag_disturbance_;
+  double mag_seconds_ = 0.0;  // time since the first usable field sample
   bool initialised_ = false;
   bool heading_aligned_ = false;
   EstimatorOutput out_;
   std::uint64_t backtracks_ = 0;
   std::uint64_t mag_no_heading_ = 0;
+  std::uint64_t mag_disturbed_ = 0;
   std::uint64_t state_recoveries_ = 0;
 };
 

@@ -23,6 +23,12 @@ struct EstimatorParams {
   // --- Gyroscope noise for Q_k (Henriksson eq. 3.3) ---
   // White noise of the bias-corrected angular rate, rad/s per sample (1σ).
   double gyro_noise_rad_s = 0.004;
+  // Rate-proportional part (scale-factor and axis-misalignment errors of MEMS gyros, which
+  // grow with the rate): σ² = gyro_noise² + (gyro_scale_noise · |ω|)².
+  double gyro_scale_noise = 0.0;
+
+  // --- Accelerometer pre-filter (accel_prefilter.hpp); 0 = raw samples as in the thesis ---
+  double accel_prefilter_time_constant_s = 0.0;
 
   // --- Accelerometer disturbance level d_k (Henriksson eq. 3.1, 2.17) ---
   double gravity_m_s2 = 9.81;
@@ -55,6 +61,12 @@ struct EstimatorParams {
   double mag_heading_time_constant_s = 10.0;
   // The horizontal field must be at least this share of the total field for a heading.
   double mag_min_horizontal_fraction = 0.1;
+  // Disturbance detection (mag_disturbance.hpp, Henriksson §4.2): K = 0 while the field
+  // strength differs from its low-pass by more than mag_max_norm_deviation_uT (eq. 4.5) or
+  // the dip angle from its low-pass by more than mag_max_dip_deviation_rad.
+  double mag_disturbance_time_constant_s = 3.0;
+  double mag_max_norm_deviation_uT = 3.0;
+  double mag_max_dip_deviation_rad = 0.07;  // 4 deg
 
   // --- Gyroscope bias from rest (issue 3, item 5) ---
   // Rest: for rest_min_duration_s, |ω - ω̄| and |a - ā| stay within these bounds, where

@@ -1,0 +1,36 @@
+#pragma once
+// Low-pass of the accelerometer in a gyro-integrated frame, before the EKF's gravity update.
+//
+// Why: the EKF of Henriksson ch. 3 compares each raw sample with gravity. A body that
+// accelerates (a person's steps, a hand moving a device around) adds accelerations that
+// average to zero over a few seconds but not over one sample; the R levels of §3.1 only
+// trust the sample less. Filtering in the body frame would smear gravity whenever the body
+// turns, so the samples are first rotated into a frame that turns with the gyro alone
+// (q_I, integrated from the bias-corrected rate and never corrected), low-passed there
+// (eq. 2.13, α from eq. 2.17), and rotated back into the current body axes. Gravity is
+// constant in that frame up to the slow gyro drift, so it passes; the accelerations of the
+// motion are filtered out. The same idea drives VQF's accelerometer correction (Laidig &
+// Seel 2023); here its output is simply the measurement a_k of eq. 3.7a.
+#include "headingd/core/low_pass.hpp"
+#include "headingd/core/quaternion.hpp"
+
+namespace headingd::core {
+
+class AccelPrefilter {
+ public:
+  // time_constant_s = 0 turns the filter off: the raw sample goes through (the thesis).
+  explicit AccelPrefilter(double time_constant_s) : time_constant_s_(time_constant_s), filtered_(time_constant_s) {}
+
+  // Returns the filtered specific force in the current body axes.
+  Vec3 update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s);
+
+  // Forget the history (after a gap: the gyro frame is not valid across it).
+  void restart();
+
+ private:
+  double time_constant_s_;
+  Quat q_inertial_body_ = Quat::Identity();
+  LowPass<Vec3> filtered_;
+};
+
+}  // namespace headingd::core
