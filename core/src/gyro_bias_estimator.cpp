@@ -1,21 +1,26 @@
 #include "headingd/core/gyro_bias_estimator.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace headingd::core {
 
-bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3& current_bias, double dt_s) {
+bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* current_bias, double dt_s) {
   const Vec3& gyro_mean = gyro_mean_.update(gyro_rad_s, dt_s);
   const Vec3& accel_mean = accel_mean_.update(accel_m_s2, dt_s);
-  const bool steady = (gyro_rad_s - gyro_mean).norm() < p_.rest_gyro_threshold_rad_s &&
-                      (gyro_mean - current_bias).norm() < p_.rest_gyro_threshold_rad_s &&
-                      (accel_m_s2 - accel_mean).norm() < p_.rest_accel_threshold_m_s2;
+  const double gyro_rms = std::sqrt(gyro_deviation2_.update((gyro_rad_s - gyro_mean).squaredNorm(), dt_s));
+  const double accel_rms = std::sqrt(accel_deviation2_.update((accel_m_s2 - accel_mean).squaredNorm(), dt_s));
+  const bool steady = gyro_rms < p_.rest_gyro_threshold_rad_s && accel_rms < p_.rest_accel_threshold_m_s2 &&
+                      // Before the first estimate any rate up to the largest plausible bias
+                      // may be the bias.
+                      (current_bias ? (gyro_mean - *current_bias).norm() < p_.rest_gyro_threshold_rad_s
+                                    : gyro_mean.norm() < p_.bias_max_rad_s);
   rest_time_s_ = steady ? rest_time_s_ + dt_s : 0.0;
   return atRest();
 }
 
 const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s) {
-  if (!rest_.update(gyro_rad_s, accel_m_s2, bias_, dt_s)) return bias_;
+  if (!rest_.update(gyro_rad_s, accel_m_s2, rest_seconds_ > 0.0 ? &bias_ : nullptr, dt_s)) return bias_;
   // A steady rate above the clamp is a turn, not a bias: keep the last good estimate.
   if (gyro_rad_s.norm() > 2.0 * p_.bias_max_rad_s) return bias_;
   rest_seconds_ += dt_s;

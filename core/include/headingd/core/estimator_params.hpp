@@ -21,14 +21,17 @@ struct EstimatorParams {
   double max_sample_gap_s = 0.1;
 
   // --- Gyroscope noise for Q_k (Henriksson eq. 3.3) ---
-  // White noise of the bias-corrected angular rate, rad/s per sample (1σ).
-  double gyro_noise_rad_s = 0.004;
+  // Process noise of the bias-corrected angular rate, rad/s per sample (1σ). Far above the
+  // sensor's white noise (BROAD's gyro: ~0.002 rad/s): it stands for everything the model
+  // leaves out (residual bias, vibration), and sets how fast the accelerometer corrects
+  // tilt (measured best on BROAD between 0.03 and 0.08).
+  double gyro_noise_rad_s = 0.05;
   // Rate-proportional part (scale-factor and axis-misalignment errors of MEMS gyros, which
   // grow with the rate): σ² = gyro_noise² + (gyro_scale_noise · |ω|)².
-  double gyro_scale_noise = 0.0;
+  double gyro_scale_noise = 0.05;
 
   // --- Accelerometer pre-filter (accel_prefilter.hpp); 0 = raw samples as in the thesis ---
-  double accel_prefilter_time_constant_s = 0.0;
+  double accel_prefilter_time_constant_s = 2.0;
 
   // --- Accelerometer disturbance level d_k (Henriksson eq. 3.1, 2.17) ---
   double gravity_m_s2 = 9.81;
@@ -58,21 +61,22 @@ struct EstimatorParams {
 
   // --- Magnetometer heading observer (Henriksson eq. 4.2) ---
   // K = 1 - exp(-dt/τ): the magnetometer pulls the heading with this time constant.
-  double mag_heading_time_constant_s = 10.0;
+  double mag_heading_time_constant_s = 15.0;
   // The horizontal field must be at least this share of the total field for a heading.
   double mag_min_horizontal_fraction = 0.1;
   // Disturbance detection (mag_disturbance.hpp, Henriksson §4.2): K = 0 while the field
   // strength differs from its low-pass by more than mag_max_norm_deviation_uT (eq. 4.5) or
   // the dip angle from its low-pass by more than mag_max_dip_deviation_rad.
   double mag_disturbance_time_constant_s = 3.0;
-  double mag_max_norm_deviation_uT = 3.0;
+  double mag_max_norm_deviation_uT = 1.5;
   double mag_max_dip_deviation_rad = 0.07;  // 4 deg
 
   // --- Gyroscope bias from rest (issue 3, item 5) ---
-  // Rest: for rest_min_duration_s, |ω - ω̄| and |a - ā| stay within these bounds, where
-  // ω̄, ā are low-passed with rest_filter_time_constant_s.
-  double rest_gyro_threshold_rad_s = 0.035;   // 2 deg/s
-  double rest_accel_threshold_m_s2 = 0.5;
+  // Rest: for rest_min_duration_s, the RMS deviations of ω and a from their means ω̄, ā
+  // (all low-passed with rest_filter_time_constant_s) stay below these bounds, and ω̄ stays
+  // within rest_gyro_threshold_rad_s of the current bias.
+  double rest_gyro_threshold_rad_s = 0.01;  // 0.6 deg/s RMS
+  double rest_accel_threshold_m_s2 = 0.3;  // RMS
   double rest_min_duration_s = 1.5;
   double rest_filter_time_constant_s = 0.5;
   // Time constant of the bias low-pass while at rest.

@@ -15,22 +15,29 @@
 
 namespace headingd::core {
 
-// Rest: for at least rest_min_duration_s, each sample's gyro and accelerometer stay close
-// to their low-passed values, and the low-passed rate itself is small (a slow steady turn is
-// not rest).
+// Rest: for at least rest_min_duration_s, the RMS deviation of gyro and accelerometer from
+// their low-passed means stays below the thresholds (a variance test, so that one noisy
+// sample does not end a rest), and the mean rate itself is close to the current bias (a
+// slow steady turn is not rest).
 class RestDetector {
  public:
   explicit RestDetector(const EstimatorParams& p)
-      : p_(p), gyro_mean_(p.rest_filter_time_constant_s), accel_mean_(p.rest_filter_time_constant_s) {}
-  // current_bias: the rate that counts as zero (a bias larger than the threshold must not
-  // keep the detector from ever seeing rest).
-  bool update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3& current_bias, double dt_s);
+      : p_(p),
+        gyro_mean_(p.rest_filter_time_constant_s),
+        accel_mean_(p.rest_filter_time_constant_s),
+        gyro_deviation2_(p.rest_filter_time_constant_s),
+        accel_deviation2_(p.rest_filter_time_constant_s) {}
+  // current_bias: the rate that counts as zero, or nullptr before there is an estimate (a
+  // bias larger than the threshold must not keep the detector from ever seeing rest).
+  bool update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* current_bias, double dt_s);
   bool atRest() const { return rest_time_s_ >= p_.rest_min_duration_s; }
 
  private:
   const EstimatorParams& p_;
   LowPass<Vec3> gyro_mean_;
   LowPass<Vec3> accel_mean_;
+  LowPass<double> gyro_deviation2_;
+  LowPass<double> accel_deviation2_;
   double rest_time_s_ = 0.0;
 };
 
