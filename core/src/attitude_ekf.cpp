@@ -26,6 +26,8 @@ void AttitudeEkf::predict(const Vec3& gyro_rad_s, double dt_s, double gyro_noise
   q_ = F * q_;
   P_ = F * P_ * F.transpose() + (s * s) * xi * xi.transpose();  // eq. 3.3
   normalise();
+  // F is orthogonal and Q lies in the tangent space of q, so P stays orthogonal to q (up to
+  // rounding, which the next update's re-expression of P removes).
 }
 
 void AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2) {
@@ -71,10 +73,6 @@ void AttitudeEkf::setAttitude(const Quat& q_nb) {
 
 void AttitudeEkf::normalise() {
   q_ /= q_.norm();
-  // The norm of q is not a degree of freedom: remove it from P so that the update spends its
-  // gain on rotation, not on a length that eq. 3.8 discards.
-  const Mat4 project = Mat4::Identity() - q_ * q_.transpose();
-  P_ = project * P_ * project.transpose();
   // q and -q are the same rotation; keeping w ≥ 0 keeps the state continuous for output.
   if (q_(0) < 0.0) q_ = -q_;
 }

@@ -13,21 +13,18 @@ void BackgroundAttitudes::restart(const Quat& estimate_nb) {
   started_ = true;
 }
 
-void BackgroundAttitudes::update(const Vec3& gyro_rad_s, double dt_s, const Quat& estimate_nb) {
+void BackgroundAttitudes::update(const Quat& increment, double dt_s, const Quat& estimate_nb) {
   if (!started_) {
     restart(estimate_nb);
     return;
   }
-  const Vec3 angle = gyro_rad_s * dt_s;
-  const double norm = angle.norm();
-  const Quat delta = norm > 0.0 ? Quat(Eigen::AngleAxisd(norm, angle / norm)) : Quat::Identity();
   for (int i = 0; i < 2; ++i) {
     age_s_[i] += dt_s;
     if (age_s_[i] >= reset_period_s_) {
       q_[i] = estimate_nb;
       age_s_[i] = 0.0;
     } else {
-      q_[i] = (q_[i] * delta).normalized();  // q(k+1) = q(k) ⊗ Δr, Henriksson eq. 2.34
+      q_[i] = (q_[i] * increment).normalized();  // q(k+1) = q(k) ⊗ Δr, Henriksson eq. 2.34
     }
   }
 }

@@ -79,7 +79,8 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, dt_s);
   const double scale_noise = p_.gyro_scale_noise * gyro.norm();
   ekf_.predict(gyro, dt_s, std::sqrt(p_.gyro_noise_rad_s * p_.gyro_noise_rad_s + scale_noise * scale_noise));
-  const Vec3 gravity_measurement = accel_prefilter_.update(gyro, s.accel_m_s2, dt_s);
+  const Quat increment = gyroIncrement(gyro, dt_s);  // shared by the gyro-only integrators
+  const Vec3 gravity_measurement = accel_prefilter_.update(increment, s.accel_m_s2, dt_s);
 
   const MotionLevel before = motion_.level();
   const MotionLevel level = motion_.update(disturbance_.update(s.accel_m_s2, dt_s));
@@ -102,7 +103,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
     ekf_.setCovariance(previous_covariance);
     ++state_recoveries_;
   }
-  background_.update(gyro, dt_s, ekf_.attitude());
+  background_.update(increment, dt_s, ekf_.attitude());
   publish(s.t_ns);
 }
 

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "headingd/core/heading_definition.hpp"
 
 namespace headingd::core {
 
@@ -14,12 +13,20 @@ MagHeadingMeasurement measureMagHeading(const Quat& q_nb, const Vec3& mag_uT, do
   if (!(total > 0.0) || m.horizontal_uT < min_horizontal_fraction * total) return m;
   m.dip_rad = std::atan2(field_n.z(), m.horizontal_uT);
   m.innovation_rad = -std::atan2(field_n.y(), field_n.x());
-  m.measured_heading_rad = wrapAngle(headingOf(q_nb) + m.innovation_rad);
+  // Heading of the body x-axis (eq. 2.31a) plus the innovation.
+  const double yaw = std::atan2(2.0 * (q_nb.x() * q_nb.y() + q_nb.w() * q_nb.z()),
+                                1.0 - 2.0 * (q_nb.y() * q_nb.y() + q_nb.z() * q_nb.z()));
+  m.measured_heading_rad = wrapAngle(yaw + m.innovation_rad);
   m.valid = true;
   return m;
 }
 
-double magObserverGain(double dt_s, double time_constant_s) { return 1.0 - std::exp(-dt_s / time_constant_s); }
+double magObserverGain(double dt_s, double time_constant_s) {
+  const double x = dt_s / time_constant_s;
+  // 1 - exp(-x); the series is exact to 1e-12 for the small x of every sample.
+  if (x < 0.01) return x * (1.0 - 0.5 * x * (1.0 - x / 3.0 * (1.0 - 0.25 * x)));
+  return -std::expm1(-x);
+}
 
 Quat applyHeadingCorrection(const Quat& q_nb, double innovation_rad, double gain) {
   return (headingRotation(gain * innovation_rad) * q_nb).normalized();

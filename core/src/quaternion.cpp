@@ -28,6 +28,13 @@ Mat4 gyroTransition(const Vec3& gyro_rad_s, double dt_s) {
   return std::cos(half_angle) * Mat4::Identity() + (0.5 * dt_s * sinc) * omegaMatrix(gyro_rad_s);
 }
 
+Quat gyroIncrement(const Vec3& gyro_rad_s, double dt_s) {
+  const double half_angle = 0.5 * gyro_rad_s.norm() * dt_s;
+  const double sinc = half_angle < 1e-8 ? 1.0 - half_angle * half_angle / 6.0 : std::sin(half_angle) / half_angle;
+  const Vec3 v = (0.5 * dt_s * sinc) * gyro_rad_s;
+  return Quat(std::cos(half_angle), v.x(), v.y(), v.z());
+}
+
 Mat43 rightProductMatrix(const Vec4& q) {
   Mat43 m;
   m << -q(1), -q(2), -q(3),  //

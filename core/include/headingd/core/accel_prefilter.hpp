@@ -22,7 +22,11 @@ class AccelPrefilter {
   explicit AccelPrefilter(double time_constant_s) : time_constant_s_(time_constant_s), filtered_(time_constant_s) {}
 
   // Returns the filtered specific force in the current body axes.
-  Vec3 update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s);
+  Vec3 update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s) {
+    return update(gyroIncrement(gyro_rad_s, dt_s), accel_m_s2, dt_s);
+  }
+  // The same with the sample's rotation already computed (gyroIncrement).
+  Vec3 update(const Quat& increment, const Vec3& accel_m_s2, double dt_s);
 
   // Forget the history (after a gap: the gyro frame is not valid across it).
   void restart();

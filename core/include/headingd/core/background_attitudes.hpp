@@ -14,7 +14,11 @@ class BackgroundAttitudes {
 
   // Integrates both with the (bias-corrected) gyro, then resets whichever is due from
   // the current estimate.
-  void update(const Vec3& gyro_rad_s, double dt_s, const Quat& estimate_nb);
+  void update(const Vec3& gyro_rad_s, double dt_s, const Quat& estimate_nb) {
+    update(gyroIncrement(gyro_rad_s, dt_s), dt_s, estimate_nb);
+  }
+  // The same with the sample's rotation already computed (gyroIncrement).
+  void update(const Quat& increment, double dt_s, const Quat& estimate_nb);
 
   // The attitude that has integrated the gyro alone for longest since its reset.
   const Quat& oldest() const;

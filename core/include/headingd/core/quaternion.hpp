@@ -28,6 +28,10 @@ Mat4 omegaMatrix(const Vec3& gyro_rad_s);
 // stays accurate at the fast rotations of hand-held motion (a few rad/s).
 Mat4 gyroTransition(const Vec3& gyro_rad_s, double dt_s);
 
+// The rotation the body makes in dt at a constant rate: exp(½ ω dt) as a quaternion, so that
+// q(t + dt) = q(t) ⊗ gyroIncrement (Henriksson eq. 2.34).
+Quat gyroIncrement(const Vec3& gyro_rad_s, double dt_s);
+
 // Ξ(q) with q ⊗ (0, v) = Ξ(q) v: maps gyro noise into quaternion space for Q_k (eq. 3.3).
 Mat43 rightProductMatrix(const Vec4& q);
 
