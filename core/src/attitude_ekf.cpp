@@ -19,8 +19,8 @@ Eigen::Matrix<double, 4, 3> earthAxisDirections(const Vec4& q) {
 
 AttitudeEkf::AttitudeEkf() : q_(1.0, 0.0, 0.0, 0.0), P_(1000.0 * Mat4::Identity()) {}
 
-void AttitudeEkf::predict(const Vec3& gyro_rad_s, double dt_s, double gyro_noise_rad_s) {
-  const Mat4 F = gyroTransition(gyro_rad_s, dt_s);  // eq. 3.2
+void AttitudeEkf::predict(const Quat& increment, double dt_s, double gyro_noise_rad_s) {
+  const Mat4 F = rightMultiplicationMatrix(increment);  // eq. 3.2 in closed form
   const Mat43 xi = rightProductMatrix(q_);
   const double s = 0.5 * dt_s * gyro_noise_rad_s;
   q_ = F * q_;
@@ -36,10 +36,7 @@ void AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2,
   const Mat3 S = H * P_ * H.transpose() + (accel_noise_m_s2 * accel_noise_m_s2) * Mat3::Identity();
   const Mat43 K = P_ * H.transpose() * S.inverse();  // eq. 3.6
   q_ += K * (accel_m_s2 - rotateEarthToBody(q_, f_n));  // eq. 3.7a (EKF form 2.9a)
-  // Eq. 3.7b in Joseph form: the same covariance in exact arithmetic, but it stays
-  // symmetric positive semi-definite in floating point over hours of 100+ Hz updates.
-  const Mat4 I_KH = Mat4::Identity() - K * H;
-  P_ = I_KH * P_ * I_KH.transpose() + (accel_noise_m_s2 * accel_noise_m_s2) * K * K.transpose();
+  P_ -= K * (H * P_);  // eq. 3.7b; kept symmetric by keepHeadingOutOfTilt below
   const Vec4 q_prior = q_;
   normalise();  // eq. 3.8
   keepHeadingOutOfTilt(q_prior);
@@ -54,6 +51,7 @@ void AttitudeEkf::keepHeadingOutOfTilt(const Vec4& q_prior) {
   const Eigen::Matrix<double, 4, 3> before = earthAxisDirections(q_prior);
   const Eigen::Matrix<double, 4, 3> after = earthAxisDirections(q_);
   Mat3 about_ned_axes = before.transpose() * P_ * before;
+  about_ned_axes = 0.5 * (about_ned_axes + about_ned_axes.transpose()).eval();
   about_ned_axes.block<2, 1>(0, 2).setZero();
   about_ned_axes.block<1, 2>(2, 0).setZero();
   P_ = after * about_ned_axes * after.transpose();

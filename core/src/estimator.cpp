@@ -77,9 +77,9 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   const Mat4 previous_covariance = ekf_.covariance();
 
   const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, dt_s);
+  const Quat increment = gyroIncrement(gyro, dt_s);  // shared by the EKF and the gyro-only integrators
   const double scale_noise = p_.gyro_scale_noise * gyro.norm();
-  ekf_.predict(gyro, dt_s, std::sqrt(p_.gyro_noise_rad_s * p_.gyro_noise_rad_s + scale_noise * scale_noise));
-  const Quat increment = gyroIncrement(gyro, dt_s);  // shared by the gyro-only integrators
+  ekf_.predict(increment, dt_s, std::sqrt(p_.gyro_noise_rad_s * p_.gyro_noise_rad_s + scale_noise * scale_noise));
   const Vec3 gravity_measurement = accel_prefilter_.update(increment, s.accel_m_s2, dt_s);
 
   const MotionLevel before = motion_.level();

@@ -20,16 +20,24 @@ Mat4 omegaMatrix(const Vec3& w) {
 }
 
 Mat4 gyroTransition(const Vec3& gyro_rad_s, double dt_s) {
-  // Ω(ω)² = -|ω|² I, so exp(½ Ω dt) = cos(½|ω|dt) I + sin(½|ω|dt)/|ω| Ω.
-  const double rate = gyro_rad_s.norm();
-  const double half_angle = 0.5 * rate * dt_s;
-  // sin(x)/rate written as (dt/2)·sinc(x) so that a zero rate needs no special case.
-  const double sinc = half_angle < 1e-8 ? 1.0 - half_angle * half_angle / 6.0 : std::sin(half_angle) / half_angle;
-  return std::cos(half_angle) * Mat4::Identity() + (0.5 * dt_s * sinc) * omegaMatrix(gyro_rad_s);
+  // Ω(ω)² = -|ω|² I, so exp(½ Ω dt) = cos(½|ω|dt) I + sin(½|ω|dt)/|ω| Ω: right
+  // multiplication by the increment quaternion.
+  return rightMultiplicationMatrix(gyroIncrement(gyro_rad_s, dt_s));
+}
+
+Mat4 rightMultiplicationMatrix(const Quat& r) {
+  const double w = r.w(), x = r.x(), y = r.y(), z = r.z();
+  Mat4 m;
+  m << w, -x, -y, -z,  //
+      x, w, z, -y,     //
+      y, -z, w, x,     //
+      z, y, -x, w;
+  return m;
 }
 
 Quat gyroIncrement(const Vec3& gyro_rad_s, double dt_s) {
   const double half_angle = 0.5 * gyro_rad_s.norm() * dt_s;
+  // sin(x)/|ω| written as (dt/2)·sinc(x) so that a zero rate needs no special case.
   const double sinc = half_angle < 1e-8 ? 1.0 - half_angle * half_angle / 6.0 : std::sin(half_angle) / half_angle;
   const Vec3 v = (0.5 * dt_s * sinc) * gyro_rad_s;
   return Quat(std::cos(half_angle), v.x(), v.y(), v.z());

@@ -13,7 +13,11 @@ class AttitudeEkf {
 
   // Prediction, eqs. 3.2-3.3: q ← F q, P ← F P Fᵀ + Q with Q from the gyro white noise
   // mapped through Ξ(q) (Q = (dt/2)² Ξ Σ_ω Ξᵀ).
-  void predict(const Vec3& gyro_rad_s, double dt_s, double gyro_noise_rad_s);
+  void predict(const Vec3& gyro_rad_s, double dt_s, double gyro_noise_rad_s) {
+    predict(gyroIncrement(gyro_rad_s, dt_s), dt_s, gyro_noise_rad_s);
+  }
+  // The same with the sample's rotation already computed (gyroIncrement).
+  void predict(const Quat& increment, double dt_s, double gyro_noise_rad_s);
 
   // Measurement update with the accelerometer, eqs. 3.5-3.7, then normalisation, eq. 3.8.
   // The model is h(q) = M(q) f_n with f_n = (0, 0, -g) the specific force at rest in NED.

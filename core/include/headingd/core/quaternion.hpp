@@ -27,6 +27,8 @@ Mat4 omegaMatrix(const Vec3& gyro_rad_s);
 // expansion I + ½ Ω dt is Henriksson eq. 3.2; the closed form keeps the norm exactly and
 // stays accurate at the fast rotations of hand-held motion (a few rad/s).
 Mat4 gyroTransition(const Vec3& gyro_rad_s, double dt_s);
+// The same matrix from the increment quaternion r = gyroIncrement(ω, dt): F q = q ⊗ r.
+Mat4 rightMultiplicationMatrix(const Quat& r);
 
 // The rotation the body makes in dt at a constant rate: exp(½ ω dt) as a quaternion, so that
 // q(t + dt) = q(t) ⊗ gyroIncrement (Henriksson eq. 2.34).
