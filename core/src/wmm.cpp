@@ -28,7 +28,14 @@ struct HarmonicTables {
 HarmonicTables layoutTables(const WmmCoefficients& k) {
   const int N = k.degree;
   if (!std::isfinite(k.epoch_year)) throw std::invalid_argument("WorldMagneticModel: epoch must be finite");
-  if (N < 1) throw std::invalid_argument("WorldMagneticModel: degree must be at least 1");
+  if (N < 1 || N > kWmmMaxDegree) {
+    throw std::invalid_argument("WorldMagneticModel: degree must be 1.." + std::to_string(kWmmMaxDegree));
+  }
+  // GeographicLib grows a process-wide table of square roots when coefficients are set up,
+  // which races with other threads evaluating. Sizing it once (thread-safe static
+  // initialisation) for every degree we accept makes later growth a no-op.
+  static const bool kRootTableReady = (SphericalEngine::RootTable(kWmmMaxDegree), true);
+  (void)kRootTableReady;
   const auto c_size = static_cast<std::size_t>(SphericalEngine::coeff::Csize(N, N));
   const auto s_size = static_cast<std::size_t>(SphericalEngine::coeff::Ssize(N, N));
   HarmonicTables t{std::vector<double>(c_size, 0.0), std::vector<double>(s_size, 0.0),

@@ -8,9 +8,7 @@
 namespace headingd::core {
 namespace {
 
-// The WMM is degree 12 and the high-resolution WMMHR 133; the bound only keeps a corrupt
-// file from asking for a huge table.
-constexpr int kMaxDegree = 200;
+constexpr int kMaxDegree = kWmmMaxDegree;
 
 std::vector<std::string_view> splitWhitespace(std::string_view line) {
   std::vector<std::string_view> tokens;
@@ -118,7 +116,7 @@ WmmCoefficients parseWmmCoefficients(std::string_view cof_text, std::string_view
     out.terms.push_back(t);
   }
 
-  const LineError at_end(source_name, line_no);
+  const LineError at_end(source_name, std::max<std::size_t>(line_no, 1));
   if (!have_header) at_end.fail("empty document: expected a WMM COF header and coefficients");
   if (out.terms.empty()) at_end.fail("no coefficients after the header");
   // Every (n, m) up to the degree must be there: a hole would silently be read as 0 nT.

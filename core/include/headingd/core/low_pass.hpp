@@ -1,6 +1,7 @@
 #pragma once
 // First-order low-pass filter of Henriksson §2.3.
 #include <cmath>
+#include <type_traits>
 
 namespace headingd::core {
 
@@ -38,8 +39,16 @@ class LowPass {
   }
 
  private:
+  static T zero() {
+    if constexpr (std::is_arithmetic_v<T>) {
+      return T(0);
+    } else {
+      return T::Zero();  // Eigen types are not zeroed by value-initialisation
+    }
+  }
+
   double time_constant_s_;
-  T y_{};
+  T y_ = zero();
   bool initialised_ = false;
 };
 

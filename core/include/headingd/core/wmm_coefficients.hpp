@@ -13,6 +13,10 @@
 
 namespace headingd::core {
 
+// Highest degree accepted. The WMM is degree 12 and the high-resolution WMMHR 133; the bound
+// keeps a corrupt file from asking for a huge table.
+inline constexpr int kWmmMaxDegree = 200;
+
 // A malformed COF document. what() names the source, the 1-based line and what was expected.
 class WmmParseError : public std::runtime_error {
  public:
@@ -37,7 +41,7 @@ struct WmmCoefficients {
   double epoch_year = 0.0;   // decimal year the coefficients refer to, e.g. 2025.0
   std::string model_name;    // e.g. "WMM-2025"
   std::string release_date;  // as written in the header, e.g. "11/13/2024"
-  int degree = 0;            // highest n; every (n, m) with 1 <= n <= degree, 0 <= m <= n is present
+  int degree = 0;            // highest n, <= kWmmMaxDegree; every (n, m) with 1 <= n <= degree, 0 <= m <= n is present
   std::vector<WmmTerm> terms;  // in file order
 };
 
