@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages that headingd's build and tests need, and only those that
+# are missing. Idempotent: when everything is present it changes nothing and does not touch
+# the network. Meant to run as root on Debian 12 (falls back to sudo if not root).
+set -euo pipefail
+
+packages=(
+  build-essential      # g++, make
+  cmake
+  pkg-config           # finds toml++ and GeographicLib
+  libeigen3-dev        # math
+  zlib1g-dev           # gzip'd CSV input
+  libcli11-dev         # command lines
+  libtomlplusplus-dev  # configuration files
+  libgtest-dev         # unit and accuracy tests
+  libbenchmark-dev     # benchmarks
+  libspdlog-dev        # logging
+  libboost-dev         # Asio, Lockfree
+  libgeographiclib-dev # World Magnetic Model, geodesy
+  gzip                 # the demo recording and BROAD trials are gzip'd
+)
+
+missing=()
+for pkg in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
+  [[ "$status" == installed ]] || missing+=("$pkg")
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages already installed, nothing to do"
+  exit 0
+fi
+
+as_root=()
+if [[ $(id -u) -ne 0 ]]; then
+  if ! command -v sudo >/dev/null; then
+    echo "install-deps: not root; as root run: apt-get install ${missing[*]}" >&2
+    exit 1
+  fi
+  as_root=(sudo)
+fi
+
+echo "install-deps: installing ${missing[*]}"
+"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
+echo "install-deps: installed ${missing[*]}"
