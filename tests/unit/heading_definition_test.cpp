@@ -1,0 +1,87 @@
+// Heading and its redefinition for lying-down poses (Henriksson §2.5.2, §3.3).
+#include "headingd/core/heading_definition.hpp"
+
+#include <gtest/gtest.h>
+
+#include "test_support.hpp"
+
+namespace headingd::core {
+namespace {
+
+using test::kDeg;
+using test::kPi;
+using test::Random;
+
+TEST(HeadingDefinition, ThesisExample331) {
+  // q = (0.649, 0, -0.760, 0) = (cos, sin) of -1.1π/4 about y: tilted backwards past
+  // vertical. The x-axis heading flips to ±180°, the redefined heading (of the -z axis, the
+  // head) stays at 0°.
+  const Quat q = Quat(0.649, 0.0, -0.760, 0.0).normalized();
+  EXPECT_NEAR(q.w(), std::cos(-1.1 * kPi / 4.0), 1e-3);
+  EXPECT_NEAR(std::abs(headingOf(q)), kPi, 0.5 * kDeg);
+  EXPECT_NEAR(redefinedHeadingOf(q), 0.0, 0.5 * kDeg);
+  // The exact rotation gives the same, to rounding.
+  const Quat exact(Eigen::AngleAxisd(-1.1 * kPi / 2.0, Vec3::UnitY()));
+  EXPECT_NEAR(std::abs(headingOf(exact)), kPi, 1e-9);
+  EXPECT_NEAR(redefinedHeadingOf(exact), 0.0, 1e-9);
+}
+
+TEST(HeadingDefinition, HeadingIsTheYawOfTheXAxis) {
+  Random rng(41);
+  for (int i = 0; i < 200; ++i) {
+    const double yaw = rng.uniform(-kPi, kPi);
+    const Quat q = test::fromYawPitchRoll(yaw, rng.uniform(-1.4, 1.4), rng.uniform(-kPi, kPi));
+    EXPECT_LT(test::angleDifference(headingOf(q), yaw), 1e-9);
+    // Independently: the body x-axis in NED, projected on the horizontal plane.
+    const Vec3 x_n = q * Vec3::UnitX();
+    EXPECT_LT(test::angleDifference(headingOf(q), std::atan2(x_n.y(), x_n.x())), 1e-9);
+  }
+}
+
+TEST(HeadingDefinition, RedefinedHeadingIsTheHeadingOfTheHead) {
+  // Definition 3.3.1: the heading of the body's -z axis (the head).
+  Random rng(42);
+  for (int i = 0; i < 200; ++i) {
+    const Quat q = rng.unitQuat();
+    const Vec3 head_n = q * Vec3(0.0, 0.0, -1.0);
+    if (head_n.head<2>().norm() < 0.05) continue;  // head vertical: no heading to compare
+    EXPECT_LT(test::angleDifference(redefinedHeadingOf(q), std::atan2(head_n.y(), head_n.x())), 1e-9) << i;
+  }
+  // Lying on the back, head pointing east: ψ_rd = 90°.
+  const Quat lying_east = headingRotation(kPi / 2) * Quat(Eigen::AngleAxisd(-kPi / 2, Vec3::UnitY()));
+  EXPECT_NEAR(redefinedHeadingOf(lying_east), kPi / 2, 1e-12);
+}
+
+TEST(HeadingDefinition, HeadHeight) {
+  EXPECT_NEAR(headHeight(Quat::Identity()), 1.0, 1e-15);
+  EXPECT_NEAR(headHeight(headingRotation(2.0)), 1.0, 1e-15);  // heading does not matter
+  EXPECT_NEAR(headHeight(Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitY()))), 0.0, 1e-15);   // lying flat
+  EXPECT_NEAR(headHeight(Quat(Eigen::AngleAxisd(-kPi / 2, Vec3::UnitX()))), 0.0, 1e-15);  // on the side
+  EXPECT_NEAR(headHeight(Quat(Eigen::AngleAxisd(kPi, Vec3::UnitX()))), -1.0, 1e-15);      // upside down
+  // In general: minus the NED z component of the head direction -z_b, i.e. its height.
+  Random rng(43);
+  for (int i = 0; i < 100; ++i) {
+    const Quat q = rng.unitQuat();
+    EXPECT_NEAR(headHeight(q), -(q * Vec3(0, 0, -1)).z(), 1e-14);
+  }
+}
+
+TEST(HeadingDefinitionSelector, HysteresisBetweenEnterAndLeave) {
+  HeadingDefinitionSelector s(0.6, 0.7);
+  // Tilt about y by θ: h = cos θ.
+  auto tilted = [](double h) { return Quat(Eigen::AngleAxisd(std::acos(h), Vec3::UnitY())); };
+  EXPECT_FALSE(s.redefined());
+  EXPECT_FALSE(s.update(tilted(0.9)));
+  EXPECT_FALSE(s.update(tilted(0.65)));  // between: stays with ψ
+  EXPECT_TRUE(s.update(tilted(0.55)));   // below 0.6: ψ_rd
+  EXPECT_TRUE(s.update(tilted(0.65)));   // between: stays with ψ_rd
+  EXPECT_TRUE(s.update(tilted(0.0)));
+  EXPECT_TRUE(s.update(tilted(-0.9)));
+  EXPECT_TRUE(s.update(tilted(0.69)));
+  EXPECT_FALSE(s.update(tilted(0.75)));  // above 0.7: ψ again
+  EXPECT_FALSE(s.update(tilted(0.61)));
+  EXPECT_FALSE(s.redefined());
+}
+
+}  // namespace
+}  // namespace headingd::core

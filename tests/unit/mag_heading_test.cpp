@@ -1,0 +1,168 @@
+// Magnetometer heading measurement and the observer of Henriksson eq. 4.2.
+#include "headingd/core/mag_heading_observer.hpp"
+
+#include <gtest/gtest.h>
+
+#include "headingd/core/heading_definition.hpp"
+#include "headingd/core/mag_disturbance.hpp"
+#include "test_support.hpp"
+
+namespace headingd::core {
+namespace {
+
+using test::kDeg;
+using test::kPi;
+using test::Random;
+
+const Vec3 kFieldNed(20.0, 0.0, 45.0);  // µT: 20 north, 0 east, 45 down (dip ≈ 66°)
+
+TEST(MagHeading, MeasuredHeadingIsTheTrueYawForAnyTiltAndWrongYaw) {
+  // The EKF attitude has the true tilt but a wrong heading; the field measured in body axes
+  // by the true attitude gives the true heading and innovation = true - wrong (wrapped).
+  int checked = 0;
+  for (double roll_deg = -80.0; roll_deg <= 80.0; roll_deg += 20.0) {
+    for (double pitch_deg = -80.0; pitch_deg <= 80.0; pitch_deg += 20.0) {
+      for (double yaw_deg = -180.0; yaw_deg < 180.0; yaw_deg += 30.0) {
+        for (double error_deg : {-170.0, -45.0, -1.0, 0.0, 3.0, 90.0, 179.0}) {
+          const double roll = roll_deg * kDeg, pitch = pitch_deg * kDeg, yaw = yaw_deg * kDeg;
+          const double wrong_yaw = yaw + error_deg * kDeg;
+          const Quat truth = test::fromYawPitchRoll(yaw, pitch, roll);
+          const Quat estimate = test::fromYawPitchRoll(wrong_yaw, pitch, roll);
+          const Vec3 mag_b = truth.inverse() * kFieldNed;
+
+          const MagHeadingMeasurement m = measureMagHeading(estimate, mag_b, 0.1);
+          ASSERT_TRUE(m.valid);
+          EXPECT_NEAR(test::angleDifference(m.measured_heading_rad, yaw), 0.0, 1e-9)
+              << roll_deg << " " << pitch_deg << " " << yaw_deg << " " << error_deg;
+          EXPECT_NEAR(m.innovation_rad, wrapAngle(yaw - wrong_yaw), 1e-9)
+              << roll_deg << " " << pitch_deg << " " << yaw_deg << " " << error_deg;
+          EXPECT_GT(m.innovation_rad, -kPi);
+          EXPECT_LE(m.innovation_rad, kPi);
+          EXPECT_NEAR(m.horizontal_uT, 20.0, 1e-9);
+          EXPECT_NEAR(m.dip_rad, std::atan2(45.0, 20.0), 1e-9);
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(checked, 9 * 9 * 12 * 7);
+}
+
+TEST(MagHeading, WorksThroughPitchNinety) {
+  // No Euler angles in the measurement: even at pitch 90° (yaw undefined) the innovation
+  // still says how far to turn about the vertical.
+  const Quat truth = headingRotation(0.4) * Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitY()));
+  const Quat estimate = headingRotation(-0.3) * Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitY()));
+  const MagHeadingMeasurement m = measureMagHeading(estimate, truth.inverse() * kFieldNed, 0.1);
+  ASSERT_TRUE(m.valid);
+  EXPECT_NEAR(m.innovation_rad, 0.7, 1e-12);
+  EXPECT_LT(test::angleBetween(applyHeadingCorrection(estimate, m.innovation_rad, 1.0), truth), 1e-12);
+}
+
+TEST(MagHeading, NorthEastComponentGivesTheMagneticHeading) {
+  // With declination δ (field towards north-east), the heading measured is from magnetic
+  // north: the true yaw minus δ.
+  const Vec3 field(20.0, 2.0, 45.0);
+  const double declination = std::atan2(2.0, 20.0);
+  const Quat truth = test::fromYawPitchRoll(1.0, 0.2, -0.3);
+  const MagHeadingMeasurement m = measureMagHeading(truth, truth.inverse() * field, 0.1);
+  ASSERT_TRUE(m.valid);
+  EXPECT_NEAR(m.measured_heading_rad, 1.0 - declination, 1e-12);
+}
+
+TEST(MagHeading, VerticalFieldGivesNoHeading) {
+  const Quat q = test::fromYawPitchRoll(0.5, 0.1, 0.2);
+  EXPECT_FALSE(measureMagHeading(q, q.inverse() * Vec3(0.0, 0.0, 50.0), 0.1).valid);
+  // Nearly vertical: horizontal share 0.05 < 0.1.
+  EXPECT_FALSE(measureMagHeading(q, q.inverse() * Vec3(2.5, 0.0, 50.0), 0.1).valid);
+  EXPECT_TRUE(measureMagHeading(q, q.inverse() * Vec3(6.0, 0.0, 50.0), 0.1).valid);
+  // No field at all.
+  EXPECT_FALSE(measureMagHeading(q, Vec3::Zero(), 0.0).valid);
+}
+
+TEST(MagHeading, ObserverGain) {
+  // Eq. 4.2 with K = 1 - exp(-dt/τ).
+  EXPECT_NEAR(magObserverGain(0.01, 10.0), 1.0 - std::exp(-0.001), 1e-15);
+  for (double dt : {1e-4, 0.005, 0.01, 0.1, 1.0}) {
+    for (double tau : {0.5, 10.0, 15.0, 100.0}) {
+      EXPECT_NEAR(magObserverGain(dt, tau), -std::expm1(-dt / tau), 1e-12) << dt << " " << tau;
+    }
+  }
+  EXPECT_NEAR(magObserverGain(0.01, 10.0), 0.001, 1e-6);
+  EXPECT_EQ(magObserverGain(0.0, 10.0), 0.0);
+  EXPECT_NEAR(magObserverGain(1000.0, 1.0), 1.0, 1e-12);
+  // The time constant holds at any rate: n steps of dt equal one step of n·dt.
+  const double k_small = magObserverGain(0.01, 5.0);
+  EXPECT_NEAR(1.0 - std::pow(1.0 - k_small, 100), magObserverGain(1.0, 5.0), 1e-12);
+}
+
+TEST(MagHeading, HeadingCorrectionChangesYawOnly) {
+  Random rng(51);
+  for (int i = 0; i < 500; ++i) {
+    const double yaw = rng.uniform(-kPi, kPi), pitch = rng.uniform(-1.5, 1.5), roll = rng.uniform(-kPi, kPi);
+    const Quat q = test::fromYawPitchRoll(yaw, pitch, roll);
+    const double innovation = rng.uniform(-kPi, kPi), gain = rng.uniform(0.0, 1.0);
+    const Quat corrected = applyHeadingCorrection(q, innovation, gain);
+
+    EXPECT_NEAR(corrected.norm(), 1.0, 1e-15);
+    const EulerAngles before = eulerZyx(q), after = eulerZyx(corrected);
+    EXPECT_NEAR(test::angleDifference(after.yaw_rad, before.yaw_rad + gain * innovation), 0.0, 1e-9) << i;
+    EXPECT_NEAR(after.pitch_rad, before.pitch_rad, 1e-9) << i;
+    EXPECT_NEAR(test::angleDifference(after.roll_rad, before.roll_rad), 0.0, 1e-9) << i;
+    // What the accelerometer sees (gravity in body axes) is unchanged.
+    EXPECT_LT((corrected.inverse() * Vec3::UnitZ() - q.inverse() * Vec3::UnitZ()).norm(), 1e-14) << i;
+  }
+}
+
+TEST(MagHeading, FullGainCorrectionAlignsWithTheField) {
+  Random rng(52);
+  for (int i = 0; i < 100; ++i) {
+    const Quat truth = rng.unitQuat();
+    const Quat tilt_only = headingRotation(rng.uniform(-kPi, kPi)) * truth;  // same tilt, wrong heading
+    const MagHeadingMeasurement m = measureMagHeading(tilt_only, truth.inverse() * kFieldNed, 0.1);
+    ASSERT_TRUE(m.valid);
+    EXPECT_LT(test::angleBetween(applyHeadingCorrection(tilt_only, m.innovation_rad, 1.0), truth), 1e-9) << i;
+  }
+}
+
+// ---------------------------------------------------------------- disturbance (§4.2)
+
+TEST(MagDisturbance, SteadyFieldIsNeverDisturbed) {
+  MagDisturbanceDetector d({3.0, 3.0, 0.07});
+  Random rng(53);
+  for (int i = 0; i < 2000; ++i) {
+    EXPECT_FALSE(d.update(49.0 + rng.normal(0.2), 1.15 + rng.normal(0.005), 0.01)) << i;
+  }
+}
+
+TEST(MagDisturbance, StrengthStepIsDisturbedUntilTheLowPassFollows) {
+  // Eq. 4.5: Δm = ||m| - |m_lp|| against the threshold; a lasting change is accepted again
+  // once the low-pass (τ = 3 s) has followed it: 5 µT · e^{-t/τ} < 3 µT after ~1.5 s.
+  MagDisturbanceDetector d({3.0, 3.0, 0.07});
+  for (int i = 0; i < 500; ++i) ASSERT_FALSE(d.update(49.0, 1.15, 0.01));
+  EXPECT_TRUE(d.update(54.0, 1.15, 0.01));
+  EXPECT_NEAR(d.normDeviation(), 5.0, 1e-9);
+  int disturbed = 1;
+  for (int i = 0; i < 500; ++i) disturbed += d.update(54.0, 1.15, 0.01) ? 1 : 0;
+  EXPECT_GT(disturbed, 100);  // for more than a second
+  EXPECT_LT(disturbed, 250);  // and not for much longer than the low-pass needs
+  EXPECT_FALSE(d.update(54.0, 1.15, 0.01));
+}
+
+TEST(MagDisturbance, DipChangeIsDisturbed) {
+  MagDisturbanceDetector d({3.0, 3.0, 0.07});
+  for (int i = 0; i < 500; ++i) ASSERT_FALSE(d.update(49.0, 1.15, 0.01));
+  EXPECT_FALSE(d.update(49.0, 1.15 + 0.05, 0.01));  // below 0.07 rad
+  EXPECT_TRUE(d.update(49.0, 1.15 + 0.1, 0.01));
+  EXPECT_GT(d.dipDeviation(), 0.07);
+}
+
+TEST(MagDisturbance, FirstSampleIsNotDisturbed) {
+  MagDisturbanceDetector d({3.0, 3.0, 0.07});
+  EXPECT_FALSE(d.update(500.0, -1.0, 0.01));
+  EXPECT_EQ(d.normDeviation(), 0.0);
+  EXPECT_EQ(d.dipDeviation(), 0.0);
+}
+
+}  // namespace
+}  // namespace headingd::core
