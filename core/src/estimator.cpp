@@ -29,7 +29,8 @@ Estimator::Estimator(const EstimatorParams& params)
       background_(p_.backup_reset_period_s),
       heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave),
       mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
-                        p_.mag_max_dip_deviation_rad}) {}
+                        p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
+                        p_.mag_max_reference_dip_deviation_rad}) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
   double dt_s = 0.0;
@@ -107,16 +108,34 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   publish(s.t_ns);
 }
 
+void Estimator::restoreBackgroundHeading() {
+  // Eq. 4.4: the detection lags the start of a disturbance (the field has to move beyond
+  // the thresholds first), and the observer has been pulling the heading towards the bad
+  // field meanwhile. The older gyro-only background attitude was last reset before that;
+  // take its heading (only the rotation about the vertical: the tilt stays the EKF's).
+  Quat difference = background_.oldest() * ekf_.attitude().conjugate();  // NED axes
+  if (difference.w() < 0.0) difference.coeffs() = -difference.coeffs();
+  const double heading_offset = 2.0 * std::atan2(difference.z(), difference.w());
+  ekf_.setAttitude(applyHeadingCorrection(ekf_.attitude(), heading_offset, 1.0));
+  ++mag_heading_restores_;
+}
+
 void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
   const auto m = measureMagHeading(ekf_.attitude(), mag_uT, p_.mag_min_horizontal_fraction);
   if (!m.valid) {
     ++mag_no_heading_;
     return;
   }
-  out_.mag_disturbed = mag_disturbance_.update(mag_uT.norm(), m.dip_rad, dt_s);
+  out_.mag_disturbance = mag_disturbance_.update(mag_uT.norm(), m.dip_rad, dt_s);
+  out_.mag_disturbed = out_.mag_disturbance.any();
+  const bool onset = out_.mag_disturbed && !mag_was_disturbed_;
+  mag_was_disturbed_ = out_.mag_disturbed;
   if (out_.mag_disturbed) {
     ++mag_disturbed_;
     out_.mag_innovation_rad = m.innovation_rad;
+    if (onset && heading_aligned_ && background_.oldestAge() <= p_.mag_restore_max_age_s) {
+      restoreBackgroundHeading();
+    }
     return;  // K = 0: the heading runs on the gyro (eq. 4.3)
   }
   // The first usable field sets the heading outright. Then eq. 4.2, with K no smaller than
@@ -155,6 +174,7 @@ EstimatorCounters Estimator::counters() const {
   c.backtracks = backtracks_;
   c.mag_no_heading = mag_no_heading_;
   c.mag_disturbed = mag_disturbed_;
+  c.mag_heading_restores = mag_heading_restores_;
   c.state_recoveries = state_recoveries_;
   return c;
 }

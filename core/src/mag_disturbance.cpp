@@ -4,13 +4,26 @@
 
 namespace headingd::core {
 
-bool MagDisturbanceDetector::update(double field_norm_uT, double dip_rad, double dt_s) {
+void MagDisturbanceDetector::setReference(double field_norm_uT, double inclination_rad) {
+  has_reference_ = true;
+  reference_norm_uT_ = field_norm_uT;
+  reference_dip_rad_ = inclination_rad;
+}
+
+MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_rad, double dt_s) {
   // Deviations are taken against the low-pass *before* this sample enters it.
   norm_deviation_ = norm_lp_.initialised() ? std::abs(field_norm_uT - norm_lp_.value()) : 0.0;  // eq. 4.5
   dip_deviation_ = dip_lp_.initialised() ? std::abs(dip_rad - dip_lp_.value()) : 0.0;
   norm_lp_.update(field_norm_uT, dt_s);
   dip_lp_.update(dip_rad, dt_s);
-  return norm_deviation_ > p_.max_norm_deviation_uT || dip_deviation_ > p_.max_dip_deviation_rad;
+  MagDisturbance d;
+  d.norm_jump = norm_deviation_ > p_.max_norm_deviation_uT;
+  d.dip_jump = dip_deviation_ > p_.max_dip_deviation_rad;
+  if (has_reference_) {
+    d.norm_reference = std::abs(field_norm_uT - reference_norm_uT_) > p_.max_reference_norm_deviation_uT;
+    d.dip_reference = std::abs(dip_rad - reference_dip_rad_) > p_.max_reference_dip_deviation_rad;
+  }
+  return d;
 }
 
 }  // namespace headingd::core

@@ -35,6 +35,7 @@ struct EstimatorOutput {
   bool at_rest = false;
   bool mag_used = false;
   bool mag_disturbed = false;
+  MagDisturbance mag_disturbance;  // which tests fired
   double mag_gain = 0.0;             // K of eq. 4.2 this sample
   double mag_innovation_rad = 0.0;   // ψ_mm - ψ_pred
 };
@@ -44,6 +45,7 @@ struct EstimatorCounters {
   std::uint64_t backtracks = 0;          // R stepped up and the background attitude took over
   std::uint64_t mag_no_heading = 0;      // field too close to vertical for a heading
   std::uint64_t mag_disturbed = 0;       // samples with K = 0 for a disturbed field
+  std::uint64_t mag_heading_restores = 0;  // disturbance onsets that restored ψ_g (eq. 4.4)
   std::uint64_t state_recoveries = 0;    // a non-finite state was replaced (never expected)
 };
 
@@ -60,10 +62,17 @@ class Estimator {
   const EstimatorParams& params() const { return p_; }
   const AttitudeEkf& ekf() const { return ekf_; }
 
+  // The Earth's field where the device is (WMM at the GPS position): enables the absolute
+  // strength and dip tests of the disturbance detection (Henriksson §4.2, issue 4).
+  void setReferenceField(double field_norm_uT, double inclination_rad) {
+    mag_disturbance_.setReference(field_norm_uT, inclination_rad);
+  }
+
  private:
   void initialise(const ImuSample& s, bool mag_usable);
   void step(const ImuSample& s, double dt_s, bool mag_usable);
   void correctHeading(const Vec3& mag_uT, double dt_s);
+  void restoreBackgroundHeading();
   void publish(std::int64_t t_ns);
 
   EstimatorParams p_;
@@ -83,6 +92,8 @@ class Estimator {
   std::uint64_t backtracks_ = 0;
   std::uint64_t mag_no_heading_ = 0;
   std::uint64_t mag_disturbed_ = 0;
+  std::uint64_t mag_heading_restores_ = 0;
+  bool mag_was_disturbed_ = false;
   std::uint64_t state_recoveries_ = 0;
 };
 

@@ -70,6 +70,18 @@ struct EstimatorParams {
   double mag_disturbance_time_constant_s = 3.0;
   double mag_max_norm_deviation_uT = 1.5;
   double mag_max_dip_deviation_rad = 0.07;  // 4 deg
+  // With a position (setReferenceField from the WMM): the strength may differ from the
+  // model's F by this much (indoors the field is often weaker but still points north,
+  // §4.2), the dip from the model's inclination by this much.
+  double mag_max_reference_norm_deviation_uT = 15.0;
+  double mag_max_reference_dip_deviation_rad = 0.17;  // 10 deg
+  // When a disturbance begins, the heading goes back to the older background gyro-only
+  // heading (ψ_g1/ψ_g2, eq. 4.4), from before the field started to go wrong, provided that
+  // one is at most this old (gyro drift grows with age); 0 turns the restore off.
+  // Off by default: on BROAD (hand-held, fast turns, a noisy magnetometer whose strength
+  // test fires often) it made the undisturbed average 1.78° → 5.18° total, because every
+  // false onset swapped in a heading with up to 10 s of gyro drift.
+  double mag_restore_max_age_s = 0.0;
 
   // --- Gyroscope bias from rest (issue 3, item 5) ---
   // Rest: for rest_min_duration_s, the RMS deviations of ω and a from their means ω̄, ā

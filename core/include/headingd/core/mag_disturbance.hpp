@@ -7,7 +7,11 @@
 //  - field strength: Δm = ||m| - |m_lp|| (eq. 4.5);
 //  - dip angle: a disturbance that keeps the strength but turns the field changes the angle
 //    between the field and gravity, which a clean Earth field keeps constant.
-// The WMM-referenced tests of the roadmap (issue 4) add to these.
+// Once the position is known (GPS + World Magnetic Model), two absolute tests join them:
+//  - field strength against the model's total intensity F at that place;
+//  - dip angle against the model's inclination.
+// Indoors a building may weaken the field for minutes while its direction stays right
+// (§4.2); the absolute strength test is therefore wider than the relative one.
 #include "headingd/core/low_pass.hpp"
 
 namespace headingd::core {
@@ -16,6 +20,17 @@ struct MagDisturbanceParams {
   double time_constant_s;      // low-pass of strength and dip (§4.2: about 3 s)
   double max_norm_deviation_uT;
   double max_dip_deviation_rad;
+  double max_reference_norm_deviation_uT;  // |‖m‖ - F_WMM|
+  double max_reference_dip_deviation_rad;  // |dip - I_WMM|
+};
+
+// Which tests found the sample disturbed (several may).
+struct MagDisturbance {
+  bool norm_jump = false;       // eq. 4.5 against the low-pass
+  bool dip_jump = false;        // dip against its low-pass
+  bool norm_reference = false;  // strength against the WMM
+  bool dip_reference = false;   // dip against the WMM inclination
+  bool any() const { return norm_jump || dip_jump || norm_reference || dip_reference; }
 };
 
 class MagDisturbanceDetector {
@@ -23,8 +38,11 @@ class MagDisturbanceDetector {
   explicit MagDisturbanceDetector(const MagDisturbanceParams& p)
       : p_(p), norm_lp_(p.time_constant_s), dip_lp_(p.time_constant_s) {}
 
-  // Returns true when the sample is disturbed.
-  bool update(double field_norm_uT, double dip_rad, double dt_s);
+  MagDisturbance update(double field_norm_uT, double dip_rad, double dt_s);
+
+  // The Earth's field at the current place (WMM): total intensity and inclination.
+  void setReference(double field_norm_uT, double inclination_rad);
+  bool hasReference() const { return has_reference_; }
   double normDeviation() const { return norm_deviation_; }
   double dipDeviation() const { return dip_deviation_; }
 
@@ -34,6 +52,9 @@ class MagDisturbanceDetector {
   LowPass<double> dip_lp_;
   double norm_deviation_ = 0.0;
   double dip_deviation_ = 0.0;
+  bool has_reference_ = false;
+  double reference_norm_uT_ = 0.0;
+  double reference_dip_rad_ = 0.0;
 };
 
 }  // namespace headingd::core
