@@ -35,9 +35,9 @@ void AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2,
   const Mat34 H = rotateEarthToBodyJacobian(q_, f_n);  // eq. 3.5
   const Mat3 S = H * P_ * H.transpose() + (accel_noise_m_s2 * accel_noise_m_s2) * Mat3::Identity();
   const Mat43 K = P_ * H.transpose() * S.inverse();  // eq. 3.6
+  const Vec4 q_prior = q_;  // P below belongs to this linearisation point
   q_ += K * (accel_m_s2 - rotateEarthToBody(q_, f_n));  // eq. 3.7a (EKF form 2.9a)
   P_ -= K * (H * P_);  // eq. 3.7b; kept symmetric by keepHeadingOutOfTilt below
-  const Vec4 q_prior = q_;
   normalise();  // eq. 3.8
   keepHeadingOutOfTilt(q_prior);
 }

@@ -6,6 +6,13 @@
 #include "headingd/core/mag_heading_observer.hpp"
 
 namespace headingd::core {
+namespace {
+
+// A start from a measured tilt is good to a few degrees: P ~ (0.05)² per component instead
+// of Algorithm 2's 1000·I, which would let the first accelerometer samples throw it around.
+const Mat4 kStartupCovariance = 0.05 * 0.05 * Mat4::Identity();
+
+}  // namespace
 
 Quat attitudeFromGravityAndField(const Vec3& accel_m_s2, const Vec3* mag_uT) {
   // At rest the accelerometer reads -g, i.e. "up"; body "down" is its opposite.
@@ -21,7 +28,7 @@ Quat attitudeFromGravityAndField(const Vec3& accel_m_s2, const Vec3* mag_uT) {
 
 Estimator::Estimator(const EstimatorParams& params)
     : p_(params),
-      gate_(p_.max_sample_gap_s),
+      gate_(p_.max_sample_gap_s, {p_.max_gyro_rad_s, p_.max_accel_m_s2, p_.max_mag_uT}),
       bias_(p_),
       disturbance_(p_.gravity_m_s2, p_.accel_disturbance_time_constant_s),
       accel_prefilter_(p_.accel_prefilter_time_constant_s),
@@ -49,10 +56,16 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       break;
     case SampleVerdict::kGap:
     case SampleVerdict::kClockJump:
-      // The attitude is kept (the gyro just cannot be integrated across the hole); the
-      // background attitudes restart so that no back-tracking reaches across it.
-      if (initialised_) background_.restart(ekf_.attitude());
+      // The gyro cannot be integrated across the hole, so the attitude may have turned by
+      // any amount meanwhile: the tilt covariance goes back to its start-up value and the
+      // next field sample sets the heading outright (then the observer's running mean).
+      // The background attitudes restart so that no back-tracking reaches across the hole.
       accel_prefilter_.restart();
+      if (!initialised_) break;  // nothing estimated yet: the output stays invalid
+      background_.restart(ekf_.attitude());
+      ekf_.setCovariance(kStartupCovariance);
+      heading_aligned_ = false;
+      mag_seconds_ = 0.0;
       publish(s.t_ns);
       break;
     default:
@@ -64,9 +77,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
 void Estimator::initialise(const ImuSample& s, bool mag_usable) {
   if (s.accel_m_s2.norm() < 0.1 * p_.gravity_m_s2) return;  // no usable gravity direction yet
   ekf_.setAttitude(attitudeFromGravityAndField(s.accel_m_s2, mag_usable ? &s.mag_uT : nullptr));
-  // A start from a measured tilt is good to a few degrees: P ~ (0.05)² per component instead
-  // of Algorithm 2's 1000·I, which would let the first accelerometer samples throw it around.
-  ekf_.setCovariance(0.05 * 0.05 * Mat4::Identity());
+  ekf_.setCovariance(kStartupCovariance);
   background_.restart(ekf_.attitude());
   heading_aligned_ = mag_usable;
   initialised_ = true;

@@ -1,5 +1,6 @@
 #include "headingd/core/params_toml.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <sstream>
 #include <toml++/toml.h>
@@ -15,12 +16,30 @@ std::string where(const std::string& source, const toml::source_region& r) {
   return o.str();
 }
 
+// The key written on line `line` (1-based) of `text`, or "" if that line has no `key =`.
+std::string keyOnLine(std::string_view text, std::size_t line) {
+  for (std::size_t i = 1; i < line && !text.empty(); ++i) {
+    const std::size_t nl = text.find('\n');
+    text = nl == std::string_view::npos ? std::string_view() : text.substr(nl + 1);
+  }
+  text = text.substr(0, text.find('\n'));
+  const std::size_t equals = text.find('=');
+  if (equals == std::string_view::npos) return "";
+  std::string_view key = text.substr(0, equals);
+  while (!key.empty() && (key.front() == ' ' || key.front() == '\t')) key.remove_prefix(1);
+  while (!key.empty() && (key.back() == ' ' || key.back() == '\t')) key.remove_suffix(1);
+  return std::string(key);
+}
+
 }  // namespace
 
 const std::vector<ParamSpec>& estimatorParamSpecs() {
   using P = EstimatorParams;
   static const std::vector<ParamSpec> specs = {
       {"max_sample_gap_s", &P::max_sample_gap_s, 1e-4, 10.0, "s"},
+      {"max_gyro_rad_s", &P::max_gyro_rad_s, 1.0, 1e4, "rad/s"},
+      {"max_accel_m_s2", &P::max_accel_m_s2, 10.0, 1e5, "m/s^2"},
+      {"max_mag_uT", &P::max_mag_uT, 10.0, 1e6, "uT"},
       {"gyro_noise_rad_s", &P::gyro_noise_rad_s, 1e-7, 1.0, "rad/s"},
       {"gyro_scale_noise", &P::gyro_scale_noise, 0.0, 1.0, "1"},
       {"accel_prefilter_time_constant_s", &P::accel_prefilter_time_constant_s, 0.0, 100.0, "s"},
@@ -60,7 +79,10 @@ EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::stri
     doc = toml::parse(toml_text, source);
   } catch (const toml::parse_error& e) {
     std::ostringstream o;
-    o << where(source, e.source()) << ": TOML syntax error: " << e.description();
+    o << where(source, e.source()) << ": TOML syntax error";
+    const std::string key = keyOnLine(toml_text, e.source().begin.line);
+    if (!key.empty()) o << " in the value of '" << key << "'";
+    o << ": " << e.description();
     throw ConfigError(o.str());
   }
   EstimatorParams p;
@@ -76,7 +98,9 @@ EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::stri
     return p;
   }
   const auto& specs = estimatorParamSpecs();
+  std::map<std::string, int> key_lines;
   for (auto&& [key, node] : *table) {
+    key_lines[std::string(key.str())] = static_cast<int>(node.source().begin.line);
     const ParamSpec* spec = nullptr;
     for (const auto& s : specs) {
       if (key.str() == s.key) spec = &s;
@@ -95,24 +119,38 @@ EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::stri
     }
     p.*(spec->member) = *value;
   }
-  validateEstimatorParams(p, source);
+  validateEstimatorParams(p, source, &key_lines);
   return p;
 }
 
-void validateEstimatorParams(const EstimatorParams& p, const std::string& source) {
-  auto require = [&](bool ok, const char* what) {
-    if (!ok) throw ConfigError(source + ": [estimator] " + what);
+void validateEstimatorParams(const EstimatorParams& p, const std::string& source,
+                             const std::map<std::string, int>* key_lines) {
+  // Names the line of whichever of the two keys the file sets (the later one if both).
+  auto require = [&](bool ok, const char* key_a, const char* key_b, const char* what) {
+    if (ok) return;
+    int line = 0;
+    if (key_lines != nullptr) {
+      for (const char* key : {key_a, key_b}) {
+        const auto it = key_lines->find(key);
+        if (it != key_lines->end()) line = std::max(line, it->second);
+      }
+    }
+    const std::string at = line > 0 ? source + ":" + std::to_string(line) : source;
+    throw ConfigError(at + ": [estimator] " + what);
   };
-  require(p.disturbance_down_to_standing < p.disturbance_up_to_walking,
+  require(p.disturbance_down_to_standing < p.disturbance_up_to_walking, "disturbance_down_to_standing",
+          "disturbance_up_to_walking",
           "disturbance_down_to_standing must be below disturbance_up_to_walking (hysteresis)");
-  require(p.disturbance_down_to_walking < p.disturbance_up_to_running,
+  require(p.disturbance_down_to_walking < p.disturbance_up_to_running, "disturbance_down_to_walking",
+          "disturbance_up_to_running",
           "disturbance_down_to_walking must be below disturbance_up_to_running (hysteresis)");
-  require(p.disturbance_up_to_walking < p.disturbance_up_to_running,
-          "disturbance_up_to_walking must be below disturbance_up_to_running");
-  require(p.accel_noise_standing_m_s2 <= p.accel_noise_walking_m_s2 &&
-              p.accel_noise_walking_m_s2 <= p.accel_noise_running_m_s2,
-          "accel_noise_* must not decrease from standing to walking to running");
-  require(p.redefine_heading_enter < p.redefine_heading_leave,
+  require(p.disturbance_up_to_walking < p.disturbance_up_to_running, "disturbance_up_to_walking",
+          "disturbance_up_to_running", "disturbance_up_to_walking must be below disturbance_up_to_running");
+  require(p.accel_noise_standing_m_s2 <= p.accel_noise_walking_m_s2, "accel_noise_standing_m_s2",
+          "accel_noise_walking_m_s2", "accel_noise_standing_m_s2 must not exceed accel_noise_walking_m_s2");
+  require(p.accel_noise_walking_m_s2 <= p.accel_noise_running_m_s2, "accel_noise_walking_m_s2",
+          "accel_noise_running_m_s2", "accel_noise_walking_m_s2 must not exceed accel_noise_running_m_s2");
+  require(p.redefine_heading_enter < p.redefine_heading_leave, "redefine_heading_enter", "redefine_heading_leave",
           "redefine_heading_enter must be below redefine_heading_leave (hysteresis)");
 }
 

@@ -18,6 +18,8 @@ const char* sampleVerdictName(SampleVerdict v) {
       return "backwards_time";
     case SampleVerdict::kNonFinite:
       return "non_finite";
+    case SampleVerdict::kOutOfRange:
+      return "out_of_range";
   }
   return "unknown";
 }
@@ -29,13 +31,32 @@ SampleVerdict SampleGate::check(const ImuSample& s, double* dt_s, bool* mag_usab
     ++counters_.non_finite;
     return SampleVerdict::kNonFinite;
   }
-  if (s.has_mag && !*mag_usable) ++counters_.non_finite_mag;
+  // Per-axis bounds (lpNorm<Infinity>) so that no square is taken of a corrupt value.
+  if (s.gyro_rad_s.lpNorm<Eigen::Infinity>() > limits_.max_gyro_rad_s ||
+      s.accel_m_s2.lpNorm<Eigen::Infinity>() > limits_.max_accel_m_s2) {
+    ++counters_.out_of_range;
+    return SampleVerdict::kOutOfRange;
+  }
+  if (s.has_mag && !*mag_usable) {
+    ++counters_.non_finite_mag;
+  } else if (*mag_usable && s.mag_uT.lpNorm<Eigen::Infinity>() > limits_.max_mag_uT) {
+    *mag_usable = false;
+    ++counters_.out_of_range_mag;
+  }
   if (!started_) {
     started_ = true;
     last_t_ns_ = s.t_ns;
     return SampleVerdict::kFirst;
   }
-  const std::int64_t step_ns = s.t_ns - last_t_ns_;
+  // A corrupt timestamp can be anywhere in the int64 range, and the difference of two such
+  // must not wrap around into a plausible step: an overflow is a jump, whichever way.
+  std::int64_t step_ns = 0;
+  if (__builtin_sub_overflow(s.t_ns, last_t_ns_, &step_ns)) {
+    const bool backwards = s.t_ns < last_t_ns_;
+    last_t_ns_ = s.t_ns;
+    ++(backwards ? counters_.clock_jumps : counters_.gaps);
+    return backwards ? SampleVerdict::kClockJump : SampleVerdict::kGap;
+  }
   if (step_ns == 0) {
     ++counters_.duplicate_time;
     return SampleVerdict::kDuplicateTime;

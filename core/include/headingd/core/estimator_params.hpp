@@ -19,6 +19,11 @@ struct EstimatorParams {
   // --- Sample handling (issue 3, item 7) ---
   // Samples further apart than this are a gap: the gyro is not integrated across it.
   double max_sample_gap_s = 0.1;
+  // Readings beyond these (per axis) are corrupt and skipped: far above any body-worn
+  // MEMS range (gyros to ±35 rad/s, accelerometers to ±16 g, magnetometers to ±5000 µT).
+  double max_gyro_rad_s = 100.0;
+  double max_accel_m_s2 = 1000.0;
+  double max_mag_uT = 10000.0;
 
   // --- Gyroscope noise for Q_k (Henriksson eq. 3.3) ---
   // Process noise of the bias-corrected angular rate, rad/s per sample (1σ). Far above the

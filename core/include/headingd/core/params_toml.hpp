@@ -1,6 +1,7 @@
 #pragma once
 // EstimatorParams from the [estimator] table of a TOML document. Parsing only: the caller
 // reads the file, so core stays free of I/O.
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -31,6 +32,9 @@ const std::vector<ParamSpec>& estimatorParamSpecs();
 EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::string& source_name);
 
 // Cross-checks between parameters (hysteresis order, level order); throws ConfigError.
-void validateEstimatorParams(const EstimatorParams& p, const std::string& source_name);
+// `key_lines` (key → line in the source), when given, lets the message name the line of the
+// offending key.
+void validateEstimatorParams(const EstimatorParams& p, const std::string& source_name,
+                             const std::map<std::string, int>* key_lines = nullptr);
 
 }  // namespace headingd::core

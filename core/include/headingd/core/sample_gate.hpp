@@ -15,6 +15,7 @@ enum class SampleVerdict {
   kDuplicateTime,   // same timestamp as the last sample: skipped
   kBackwardsTime,   // slightly older than the last sample: skipped
   kNonFinite,       // NaN/Inf in gyro or accelerometer: skipped
+  kOutOfRange,      // a gyro or accelerometer reading no sensor of this kind can give: skipped
 };
 
 const char* sampleVerdictName(SampleVerdict v);
@@ -27,11 +28,23 @@ struct SampleCounters {
   std::uint64_t backwards_time = 0;
   std::uint64_t non_finite = 0;
   std::uint64_t non_finite_mag = 0;  // magnetometer dropped, gyro and accelerometer used
+  std::uint64_t out_of_range = 0;
+  std::uint64_t out_of_range_mag = 0;  // magnetometer dropped, gyro and accelerometer used
+};
+
+// Largest readings a sample may hold. Beyond them a value is corrupt, not a measurement
+// (and squares of values near 1e154 would overflow to infinity in the filters).
+struct SampleLimits {
+  double max_gyro_rad_s;
+  double max_accel_m_s2;
+  double max_mag_uT;
 };
 
 class SampleGate {
  public:
-  explicit SampleGate(double max_gap_s) : max_gap_ns_(static_cast<std::int64_t>(max_gap_s * 1e9)) {}
+  SampleGate(double max_gap_s, const SampleLimits& limits)
+      : max_gap_ns_(static_cast<std::int64_t>(max_gap_s * 1e9)), limits_(limits) {}
+  explicit SampleGate(double max_gap_s) : SampleGate(max_gap_s, SampleLimits{1e3, 1e4, 1e5}) {}
 
   // Returns the verdict; for kAccepted, *dt_s is the period since the last used sample.
   // A sample whose magnetometer alone is non-finite is accepted with *mag_usable = false.
@@ -40,6 +53,7 @@ class SampleGate {
 
  private:
   std::int64_t max_gap_ns_;
+  SampleLimits limits_;
   std::int64_t last_t_ns_ = 0;
   bool started_ = false;
   SampleCounters counters_;

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# headingd-replay then headingd-eval on one BROAD trial: one output row per input row, the
+# documented header, and an RMSE below the trial's accuracy limit.
+set -euo pipefail
+replay=$1 eval=$2 trial=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$replay" --imu-csv "$trial" --out "$work/est.csv" 2>"$work/counters.json"
+header=$(head -n 1 "$work/est.csv")
+[ "$header" = "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg" ] || { echo "bad header: $header"; exit 1; }
+in_rows=$(( $(zcat -f "$trial" | wc -l) - 1 ))
+out_rows=$(( $(wc -l < "$work/est.csv") - 1 ))
+[ "$in_rows" -eq "$out_rows" ] || { echo "rows: in $in_rows, out $out_rows"; exit 1; }
+grep -q '"non_finite":0' "$work/counters.json" || { echo "counters: $(cat "$work/counters.json")"; exit 1; }
+
+result=$("$eval" --estimates "$work/est.csv" --reference "$trial")
+echo "$result"
+total=$(sed -n 's/.*"total_rmse_deg":\([0-9.]*\).*/\1/p' <<<"$result")
+samples=$(sed -n 's/.*"samples":\([0-9]*\).*/\1/p' <<<"$result")
+[ "$samples" -gt 20000 ] || { echo "too few scored samples: $samples"; exit 1; }
+awk -v t="$total" 'BEGIN { exit !(t > 0 && t < 1.0) }' || { echo "total RMSE $total not in (0, 1.0)"; exit 1; }
+
+# The same run again gives the same bytes: the estimator is deterministic.
+"$replay" --imu-csv "$trial" --out "$work/est2.csv" 2>/dev/null
+cmp -s "$work/est.csv" "$work/est2.csv" || { echo "replay is not deterministic"; exit 1; }
