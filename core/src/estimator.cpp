@@ -32,6 +32,7 @@ Estimator::Estimator(const EstimatorParams& params)
       bias_(p_),
       disturbance_(p_.gravity_m_s2, p_.accel_disturbance_time_constant_s),
       accel_prefilter_(p_.accel_prefilter_time_constant_s),
+      mag_prefilter_(p_.mag_prefilter_time_constant_s),
       motion_(p_),
       background_(p_.backup_reset_period_s),
       heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave),
@@ -61,6 +62,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       // next field sample sets the heading outright (then the observer's running mean).
       // The background attitudes restart so that no back-tracking reaches across the hole.
       accel_prefilter_.restart();
+      mag_prefilter_.restart();
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
       background_.restart(ekf_.attitude());
       ekf_.setCovariance(kStartupCovariance);
@@ -107,7 +109,12 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   out_.mag_used = false;
   out_.mag_disturbed = false;
   out_.mag_gain = 0.0;
-  if (mag_usable) correctHeading(s.mag_uT, dt_s);
+  mag_prefilter_.advance(increment);
+  mag_sample_dt_s_ += dt_s;
+  if (mag_usable) {
+    correctHeading(mag_prefilter_.add(s.mag_uT, mag_sample_dt_s_), dt_s);
+    mag_sample_dt_s_ = 0.0;
+  }
 
   if (!ekf_.state().allFinite() || !ekf_.covariance().allFinite()) {
     // Never expected (every input is finite by now); if it happens, keep the last good state.

@@ -10,10 +10,13 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
   const Vec3& accel_mean = accel_mean_.update(accel_m_s2, dt_s);
   const double gyro_rms = std::sqrt(gyro_deviation2_.update((gyro_rad_s - gyro_mean).squaredNorm(), dt_s));
   const double accel_rms = std::sqrt(accel_deviation2_.update((accel_m_s2 - accel_mean).squaredNorm(), dt_s));
-  const bool steady = gyro_rms < p_.rest_gyro_threshold_rad_s && accel_rms < p_.rest_accel_threshold_m_s2 &&
+  gyro_floor_.update(gyro_rms, dt_s);
+  const double gyro_bound =
+      gyro_floor_.threshold(2.5, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s);
+  const bool steady = gyro_rms < gyro_bound && accel_rms < p_.rest_accel_threshold_m_s2 &&
                       // Before the first estimate any rate up to the largest plausible bias
                       // may be the bias.
-                      (current_bias ? (gyro_mean - *current_bias).norm() < p_.rest_gyro_threshold_rad_s
+                      (current_bias ? (gyro_mean - *current_bias).norm() < gyro_bound
                                     : gyro_mean.norm() < p_.bias_max_rad_s);
   rest_time_s_ = steady ? rest_time_s_ + dt_s : 0.0;
   return atRest();

@@ -16,9 +16,11 @@ MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_r
   dip_deviation_ = dip_lp_.initialised() ? std::abs(dip_rad - dip_lp_.value()) : 0.0;
   norm_lp_.update(field_norm_uT, dt_s);
   dip_lp_.update(dip_rad, dt_s);
+  norm_floor_.update(std::sqrt(norm_deviation2_.update(norm_deviation_ * norm_deviation_, dt_s)), dt_s);
+  dip_floor_.update(std::sqrt(dip_deviation2_.update(dip_deviation_ * dip_deviation_, dt_s)), dt_s);
   MagDisturbance d;
-  d.norm_jump = norm_deviation_ > p_.max_norm_deviation_uT;
-  d.dip_jump = dip_deviation_ > p_.max_dip_deviation_rad;
+  d.norm_jump = norm_deviation_ > norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT);
+  d.dip_jump = dip_deviation_ > dip_floor_.threshold(4.0, p_.max_dip_deviation_rad, 5.0 * p_.max_dip_deviation_rad);
   if (has_reference_) {
     d.norm_reference = std::abs(field_norm_uT - reference_norm_uT_) > p_.max_reference_norm_deviation_uT;
     d.dip_reference = std::abs(dip_rad - reference_dip_rad_) > p_.max_reference_dip_deviation_rad;

@@ -57,13 +57,26 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"redefine_heading_leave", &P::redefine_heading_leave, -1.0, 1.0, "h(q)"},
       {"mag_heading_time_constant_s", &P::mag_heading_time_constant_s, 1e-3, kInf, "s"},
       {"mag_min_horizontal_fraction", &P::mag_min_horizontal_fraction, 0.0, 1.0, "1"},
+      {"mag_prefilter_time_constant_s", &P::mag_prefilter_time_constant_s, 0.0, 10.0, "s"},
       {"mag_disturbance_time_constant_s", &P::mag_disturbance_time_constant_s, 1e-3, 600.0, "s"},
       {"mag_max_norm_deviation_uT", &P::mag_max_norm_deviation_uT, 0.0, 1000.0, "uT"},
       {"mag_max_dip_deviation_rad", &P::mag_max_dip_deviation_rad, 0.0, 3.2, "rad"},
       {"mag_max_reference_norm_deviation_uT", &P::mag_max_reference_norm_deviation_uT, 0.0, 1000.0, "uT"},
       {"mag_max_reference_dip_deviation_rad", &P::mag_max_reference_dip_deviation_rad, 0.0, 3.2, "rad"},
       {"mag_restore_max_age_s", &P::mag_restore_max_age_s, 0.0, 600.0, "s"},
+      {"gait_min_speed_mps", &P::gait_min_speed_mps, 0.0, 20.0, "m/s"},
+      {"gait_high_pass_time_constant_s", &P::gait_high_pass_time_constant_s, 0.05, 60.0, "s"},
+      {"mount_yaw_prior_sigma_rad", &P::mount_yaw_prior_sigma_rad, 0.0, 3.2, "rad"},
+      {"decl_min_speed_mps", &P::decl_min_speed_mps, 0.0, 100.0, "m/s"},
+      {"decl_max_hdop", &P::decl_max_hdop, 0.5, 100.0, "1"},
+      {"decl_max_turn_rate_rad_s", &P::decl_max_turn_rate_rad_s, 0.0, 10.0, "rad/s"},
+      {"decl_min_undisturbed_s", &P::decl_min_undisturbed_s, 0.0, 600.0, "s"},
+      {"decl_direction_width_rad", &P::decl_direction_width_rad, 0.01, 3.2, "rad"},
+      {"decl_min_direction_epochs", &P::decl_min_direction_epochs, 1.0, 1e6, "epochs"},
+      {"decl_wmm_sigma_rad", &P::decl_wmm_sigma_rad, 1e-4, 3.2, "rad"},
+      {"decl_receiver_sigma_rad", &P::decl_receiver_sigma_rad, 1e-4, 3.2, "rad"},
       {"rest_gyro_threshold_rad_s", &P::rest_gyro_threshold_rad_s, 0.0, 1.0, "rad/s"},
+      {"rest_gyro_max_threshold_rad_s", &P::rest_gyro_max_threshold_rad_s, 0.0, 10.0, "rad/s"},
       {"rest_accel_threshold_m_s2", &P::rest_accel_threshold_m_s2, 0.0, 10.0, "m/s^2"},
       {"rest_min_duration_s", &P::rest_min_duration_s, 0.0, 60.0, "s"},
       {"rest_filter_time_constant_s", &P::rest_filter_time_constant_s, 1e-3, 60.0, "s"},
@@ -150,6 +163,8 @@ void validateEstimatorParams(const EstimatorParams& p, const std::string& source
           "accel_noise_walking_m_s2", "accel_noise_standing_m_s2 must not exceed accel_noise_walking_m_s2");
   require(p.accel_noise_walking_m_s2 <= p.accel_noise_running_m_s2, "accel_noise_walking_m_s2",
           "accel_noise_running_m_s2", "accel_noise_walking_m_s2 must not exceed accel_noise_running_m_s2");
+  require(p.rest_gyro_threshold_rad_s <= p.rest_gyro_max_threshold_rad_s, "rest_gyro_threshold_rad_s",
+          "rest_gyro_max_threshold_rad_s", "rest_gyro_threshold_rad_s must not exceed rest_gyro_max_threshold_rad_s");
   require(p.redefine_heading_enter < p.redefine_heading_leave, "redefine_heading_enter", "redefine_heading_leave",
           "redefine_heading_enter must be below redefine_heading_leave (hysteresis)");
 }

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "headingd/core/accel_disturbance.hpp"
-#include "headingd/core/accel_prefilter.hpp"
+#include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/background_attitudes.hpp"
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/gyro_bias_estimator.hpp"
@@ -79,8 +79,8 @@ TEST(AccelDisturbanceLevel, RestIsZero) {
 
 // ---------------------------------------------------------------- accelerometer pre-filter
 
-TEST(AccelPrefilter, ZeroTimeConstantPassesTheRawSample) {
-  AccelPrefilter f(0.0);
+TEST(GyroFrameLowPass, ZeroTimeConstantPassesTheRawSample) {
+  GyroFrameLowPass f(0.0);
   Random rng(34);
   for (int i = 0; i < 100; ++i) {
     const Vec3 a = rng.vector(-20.0, 20.0);
@@ -88,10 +88,10 @@ TEST(AccelPrefilter, ZeroTimeConstantPassesTheRawSample) {
   }
 }
 
-TEST(AccelPrefilter, GravityPassesWhileTheBodyTurns) {
+TEST(GyroFrameLowPass, GravityPassesWhileTheBodyTurns) {
   // In the gyro-integrated frame gravity is constant, so it comes out unfiltered in the
   // current body axes however fast the body turns.
-  AccelPrefilter f(2.0);
+  GyroFrameLowPass f(2.0);
   const Vec3 w(0.8, -1.5, 2.0);
   const double dt = 0.01;
   Quat q = test::fromYawPitchRoll(0.3, 0.4, -0.5);
@@ -102,10 +102,10 @@ TEST(AccelPrefilter, GravityPassesWhileTheBodyTurns) {
   }
 }
 
-TEST(AccelPrefilter, AttenuatesOscillatingAcceleration) {
+TEST(GyroFrameLowPass, AttenuatesOscillatingAcceleration) {
   // 3 m/s² at 2 Hz (steps) on top of gravity, body still: the output keeps gravity and keeps
   // little of the oscillation.
-  AccelPrefilter f(1.0);
+  GyroFrameLowPass f(1.0);
   const double dt = 0.01;
   double worst = 0.0;
   for (int i = 0; i < 1000; ++i) {
@@ -116,8 +116,8 @@ TEST(AccelPrefilter, AttenuatesOscillatingAcceleration) {
   EXPECT_LT(worst, 0.3);  // first order at τ = 1 s: about 3 / (2π·2·1) ≈ 0.24
 }
 
-TEST(AccelPrefilter, RestartForgetsTheHistory) {
-  AccelPrefilter f(1.0);
+TEST(GyroFrameLowPass, RestartForgetsTheHistory) {
+  GyroFrameLowPass f(1.0);
   for (int i = 0; i < 100; ++i) f.update(Vec3(0.0, 0.0, 1.0), Vec3(0.0, 0.0, -kG), 0.01);
   f.restart();
   const Vec3 a(1.0, 2.0, -9.0);

@@ -7,11 +7,14 @@
 #include <fstream>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
-#include "headingd/core/estimator.hpp"
+#include "headingd/core/heading_pipeline.hpp"
+#include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/core/params_toml.hpp"
 #include "headingd/replay/imu_csv.hpp"
+#include "headingd/replay/nmea_epochs.hpp"
 #include "headingd/replay/numeric_csv.hpp"
 
 namespace {
@@ -46,39 +49,79 @@ int main(int argc, char** argv) {
       ->required();
   app.add_option("--config", config, "TOML file with an [estimator] table (config/estimator.toml lists the keys)");
   app.add_option("--out", out, "output CSV: t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg")->required();
+  std::string nmea_path, wmm_path = HEADINGD_WMM_DEFAULT_COF;
+  double nmea_first_epoch_t = 0.0;
+  app.add_option("--nmea", nmea_path,
+                 "NMEA capture of the GPS beside the IMU; adds the columns heading_mag_deg,declination_deg,"
+                 "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed. "
+                 "Alignment: the first NMEA epoch (first sentence with a UTC time) is at IMU time "
+                 "--nmea-first-epoch-t, later epochs at that plus their UTC difference");
+  app.add_option("--nmea-first-epoch-t", nmea_first_epoch_t, "IMU time [s] of the first NMEA epoch (default 0)");
+  app.add_option("--wmm", wmm_path, "World Magnetic Model coefficients (NOAA COF)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   try {
     const core::EstimatorParams params = loadParams(config);
     const auto samples = replay::readImuCsv(imu_csv);
-    core::Estimator estimator(params);
+    const bool with_gps = !nmea_path.empty();
+    replay::NmeaEpochs gps;
+    std::optional<core::WorldMagneticModel> wmm;
+    if (with_gps) {
+      gps = replay::readNmeaEpochs(nmea_path, nmea_first_epoch_t);
+      wmm.emplace(core::parseWmmCoefficients(replay::readMaybeGzipFile(wmm_path), wmm_path));
+    }
+    core::HeadingPipeline pipeline(params, wmm ? &*wmm : nullptr);
 
     // Estimates are kept in memory and written afterwards, so the timing below is the
-    // estimator's alone.
-    std::vector<core::EstimatorOutput> estimates(samples.size());
+    // estimator's alone. GPS epochs go in after the IMU sample of the same or an earlier time.
+    std::vector<core::HeadingOutput> estimates(samples.size());
+    std::size_t next_epoch = 0;
     const auto start = std::chrono::steady_clock::now();
     for (std::size_t i = 0; i < samples.size(); ++i) {
-      estimator.process(samples[i]);
-      estimates[i] = estimator.output();  // a rejected sample repeats the last estimate
+      pipeline.process(samples[i]);
+      while (next_epoch < gps.epochs.size() && gps.epochs[next_epoch].t_ns <= samples[i].t_ns) {
+        pipeline.processGps(gps.epochs[next_epoch++]);
+      }
+      estimates[i] = pipeline.output();  // a rejected sample repeats the last estimate
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::FILE* f = std::fopen(out.c_str(), "w");
     if (f == nullptr) throw std::runtime_error(out + ": cannot open for writing");
-    std::fputs("t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg\n", f);
+    std::fputs(with_gps ? "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_mag_deg,declination_deg,"
+                          "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed\n"
+                        : "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg\n",
+               f);
     constexpr double kDeg = 180.0 / std::numbers::pi;
     for (std::size_t i = 0; i < samples.size(); ++i) {
-      const auto& e = estimates[i];
+      const auto& h = estimates[i];
+      const auto& e = h.attitude;
       const double t = static_cast<double>(samples[i].t_ns) * 1e-9;
       if (!e.valid) {  // nothing usable yet: say so rather than invent an attitude
-        std::fprintf(f, "%.9g,nan,nan,nan,nan,nan,nan,nan\n", t);
+        std::fprintf(f, with_gps ? "%.9g,nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,none,nan,nan,0\n"
+                                 : "%.9g,nan,nan,nan,nan,nan,nan,nan\n",
+                     t);
         continue;
       }
-      std::fprintf(f, "%.9g,%.9f,%.9f,%.9f,%.9f,%.6f,%.6f,%.6f\n", t, e.q_nb.w(), e.q_nb.x(), e.q_nb.y(),
-                   e.q_nb.z(), e.euler.roll_rad * kDeg, e.euler.pitch_rad * kDeg, e.euler.yaw_rad * kDeg);
+      std::fprintf(f, "%.9g,%.9f,%.9f,%.9f,%.9f,%.6f,%.6f,%.6f", t, e.q_nb.w(), e.q_nb.x(), e.q_nb.y(), e.q_nb.z(),
+                   e.euler.roll_rad * kDeg, e.euler.pitch_rad * kDeg, e.euler.yaw_rad * kDeg);
+      if (with_gps) {
+        std::fprintf(f, ",%.6f,%.6f,%.6f,%s,%.6f,%.6f,%d", h.heading_mag_rad * kDeg, h.declination_rad * kDeg,
+                     h.declination_sigma_rad * kDeg, core::declinationSourceName(h.declination_sources),
+                     h.mount_yaw_rad * kDeg, h.heading_true_rad * kDeg, e.mag_disturbed ? 1 : 0);
+      }
+      std::fputc('\n', f);
     }
     if (std::fclose(f) != 0) throw std::runtime_error(out + ": write failed");
-    printCounters(estimator.counters(), samples.size(), seconds);
+    printCounters(pipeline.estimator().counters(), samples.size(), seconds);
+    if (with_gps) {
+      std::fprintf(stderr, "{\"gps_epochs\":%zu,\"gps_epochs_used_for_declination\":%llu", gps.epochs.size(),
+                   static_cast<unsigned long long>(pipeline.gpsEpochsUsedForDeclination()));
+      nmea::forEachCounter(gps.counters, [](const char* name, std::uint64_t v) {
+        std::fprintf(stderr, ",\"nmea_%s\":%llu", name, static_cast<unsigned long long>(v));
+      });
+      std::fputs("}\n", stderr);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-replay: %s\n", e.what());
     return 1;

@@ -24,6 +24,7 @@ class CircularMean {
   // Circular standard deviation sqrt(-2 ln R) (equals the ordinary one for small spreads).
   double spread() const {
     const double r = resultantLength();
+    if (r >= 1.0) return 0.0;  // identical angles (or rounding just above 1)
     return r > 0.0 ? std::sqrt(-2.0 * std::log(r)) : INFINITY;
   }
   // Standard error of the mean, treating the samples as independent.

@@ -2,13 +2,13 @@
 // The whole attitude and magnetic-heading estimator: pure and deterministic (same samples
 // in, same estimates out), no I/O, no clocks. Per sample:
 //   gate (timestamps, NaN) → gyro bias (rest) → EKF predict (Henriksson eq. 3.2-3.3)
-//   → accelerometer pre-filter (accel_prefilter.hpp) → d_k and R level (eq. 3.1, 3.4, hysteresis) → back-tracking on a step up (§3.1)
+//   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → d_k and R level (eq. 3.1, 3.4, hysteresis) → back-tracking on a step up (§3.1)
 //   → EKF gravity update (eq. 3.5-3.8) → magnetometer heading observer (eq. 4.2)
 //   → background gyro-only attitudes (§3.1, eq. 4.4) → heading definition (§3.3).
 #include <cstdint>
 
 #include "headingd/core/accel_disturbance.hpp"
-#include "headingd/core/accel_prefilter.hpp"
+#include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/attitude_ekf.hpp"
 #include "headingd/core/background_attitudes.hpp"
 #include "headingd/core/estimator_params.hpp"
@@ -80,7 +80,9 @@ class Estimator {
   GyroBiasEstimator bias_;
   AttitudeEkf ekf_;
   AccelDisturbanceLevel disturbance_;
-  AccelPrefilter accel_prefilter_;
+  GyroFrameLowPass accel_prefilter_;
+  GyroFrameLowPass mag_prefilter_;
+  double mag_sample_dt_s_ = 0.0;  // time since the last field sample (a slower magnetometer)
   MotionLevelSelector motion_;
   BackgroundAttitudes background_;
   HeadingDefinitionSelector heading_definition_;

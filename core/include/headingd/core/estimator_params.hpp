@@ -35,7 +35,7 @@ struct EstimatorParams {
   // grow with the rate): σ² = gyro_noise² + (gyro_scale_noise · |ω|)².
   double gyro_scale_noise = 0.05;
 
-  // --- Accelerometer pre-filter (accel_prefilter.hpp); 0 = raw samples as in the thesis ---
+  // --- Accelerometer pre-filter (gyro_frame_low_pass.hpp); 0 = raw samples as in the thesis ---
   double accel_prefilter_time_constant_s = 2.0;
 
   // --- Accelerometer disturbance level d_k (Henriksson eq. 3.1, 2.17) ---
@@ -69,6 +69,9 @@ struct EstimatorParams {
   double mag_heading_time_constant_s = 15.0;
   // The horizontal field must be at least this share of the total field for a heading.
   double mag_min_horizontal_fraction = 0.1;
+  // The field is low-passed in a gyro-integrated frame (gyro_frame_low_pass.hpp) with this
+  // time constant before the disturbance tests and the observer (0 = raw samples).
+  double mag_prefilter_time_constant_s = 0.0;
   // Disturbance detection (mag_disturbance.hpp, Henriksson §4.2): K = 0 while the field
   // strength differs from its low-pass by more than mag_max_norm_deviation_uT (eq. 4.5) or
   // the dip angle from its low-pass by more than mag_max_dip_deviation_rad.
@@ -88,12 +91,42 @@ struct EstimatorParams {
   // false onset swapped in a heading with up to 10 s of gyro drift.
   double mag_restore_max_age_s = 0.0;
 
+  // --- Mounting yaw from the gait (gait_mount_yaw.hpp) ---
+  // Walking: the GPS speed was at least this within the last two seconds and the body is
+  // upright (h(q) > 0.8).
+  double gait_min_speed_mps = 0.8;
+  // The mean horizontal acceleration is removed with a low-pass of this time constant.
+  double gait_high_pass_time_constant_s = 2.0;
+  // Uncertainty of the assumed mounting yaw of 0 before the gait has given one.
+  double mount_yaw_prior_sigma_rad = 0.17;  // 10 deg
+
+  // --- Declination (Henriksson ch. 5; declination_estimator.hpp) ---
+  // An epoch's GPS course counts only with a fix, at least this speed, at most this HDOP,
+  // walking straight (course and magnetic heading each turning less than the rate below
+  // since the last epoch) and a magnetometer undisturbed for the given time.
+  double decl_min_speed_mps = 1.0;
+  double decl_max_hdop = 3.0;
+  double decl_max_turn_rate_rad_s = 0.17;  // 10 deg/s
+  double decl_min_undisturbed_s = 2.0;
+  // Eq. 5.1 averages over walking directions; an epoch starts a new direction when its
+  // course is further than this from every direction seen so far.
+  double decl_direction_width_rad = 0.52;  // 30 deg
+  // A direction counts once it has this many epochs (eq. 5.2's K).
+  double decl_min_direction_epochs = 10.0;
+  // Uncertainty of the World Magnetic Model's declination at a place (its global error is
+  // about 0.4°, local anomalies reach degrees) and of a receiver's magnetic variation (RMC;
+  // receivers often use an older or coarser model).
+  double decl_wmm_sigma_rad = 0.035;       // 2 deg
+  double decl_receiver_sigma_rad = 0.035;  // 2 deg
+
   // --- Gyroscope bias from rest (issue 3, item 5) ---
   // Rest: for rest_min_duration_s, the RMS deviations of ω and a from their means ω̄, ā
   // (all low-passed with rest_filter_time_constant_s) stay below these bounds, and ω̄ stays
   // within rest_gyro_threshold_rad_s of the current bias.
   double rest_gyro_threshold_rad_s = 0.01;  // 0.6 deg/s RMS
   double rest_accel_threshold_m_s2 = 0.3;  // RMS
+  // Upper bound of the gyro's rest threshold when it follows the learned noise floor.
+  double rest_gyro_max_threshold_rad_s = 0.2;
   double rest_min_duration_s = 1.5;
   double rest_filter_time_constant_s = 0.5;
   // Time constant of the bias low-pass while at rest.

@@ -11,12 +11,16 @@
 // later roadmap step. Between rests the last estimate is held.
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/low_pass.hpp"
+#include "headingd/core/noise_floor.hpp"
 #include "headingd/core/quaternion.hpp"
 
 namespace headingd::core {
 
 // Rest: for at least rest_min_duration_s, the RMS deviation of gyro and accelerometer from
-// their low-passed means stays below the thresholds (a variance test, so that one noisy
+// their low-passed means stays below the thresholds (the gyro's: rest_gyro_threshold_rad_s
+// or 2.5 times the gyro's own learned noise floor, whichever is larger, up to
+// rest_gyro_max_threshold_rad_s; the accelerometer's stays absolute, since it is what tells
+// a person standing from one moving) (a variance test, so that one noisy
 // sample does not end a rest), and the mean rate itself is close to the current bias (a
 // slow steady turn is not rest).
 class RestDetector {
@@ -26,7 +30,8 @@ class RestDetector {
         gyro_mean_(p.rest_filter_time_constant_s),
         accel_mean_(p.rest_filter_time_constant_s),
         gyro_deviation2_(p.rest_filter_time_constant_s),
-        accel_deviation2_(p.rest_filter_time_constant_s) {}
+        accel_deviation2_(p.rest_filter_time_constant_s),
+        gyro_floor_(4.0 * p.rest_filter_time_constant_s) {}
   // current_bias: the rate that counts as zero, or nullptr before there is an estimate (a
   // bias larger than the threshold must not keep the detector from ever seeing rest).
   bool update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* current_bias, double dt_s);
@@ -38,6 +43,7 @@ class RestDetector {
   LowPass<Vec3> accel_mean_;
   LowPass<double> gyro_deviation2_;
   LowPass<double> accel_deviation2_;
+  NoiseFloor gyro_floor_;
   double rest_time_s_ = 0.0;
 };
 

@@ -12,7 +12,12 @@
 //  - dip angle against the model's inclination.
 // Indoors a building may weaken the field for minutes while its direction stays right
 // (§4.2); the absolute strength test is therefore wider than the relative one.
+//
+// The two relative tests compare single samples, so their thresholds must sit above the
+// magnetometer's own noise: each is the configured value or 4 times the learned noise floor
+// of that deviation (noise_floor.hpp), whichever is larger (at most 5 times the configured).
 #include "headingd/core/low_pass.hpp"
+#include "headingd/core/noise_floor.hpp"
 
 namespace headingd::core {
 
@@ -36,7 +41,13 @@ struct MagDisturbance {
 class MagDisturbanceDetector {
  public:
   explicit MagDisturbanceDetector(const MagDisturbanceParams& p)
-      : p_(p), norm_lp_(p.time_constant_s), dip_lp_(p.time_constant_s) {}
+      : p_(p),
+        norm_lp_(p.time_constant_s),
+        dip_lp_(p.time_constant_s),
+        norm_deviation2_(1.0),
+        dip_deviation2_(1.0),
+        norm_floor_(2.0),
+        dip_floor_(2.0) {}
 
   MagDisturbance update(double field_norm_uT, double dip_rad, double dt_s);
 
@@ -50,6 +61,10 @@ class MagDisturbanceDetector {
   MagDisturbanceParams p_;
   LowPass<double> norm_lp_;
   LowPass<double> dip_lp_;
+  LowPass<double> norm_deviation2_;  // for the noise floors: mean squares over about 1 s
+  LowPass<double> dip_deviation2_;
+  NoiseFloor norm_floor_;
+  NoiseFloor dip_floor_;
   double norm_deviation_ = 0.0;
   double dip_deviation_ = 0.0;
   bool has_reference_ = false;

@@ -1,7 +1,7 @@
 #pragma once
-// Low-pass of the accelerometer in a gyro-integrated frame, before the EKF's gravity update.
+// Low-pass of a body-frame vector (accelerometer, magnetometer) in a gyro-integrated frame.
 //
-// Why: the EKF of Henriksson ch. 3 compares each raw sample with gravity. A body that
+// For the accelerometer, before the EKF's gravity update. Why: the EKF of Henriksson ch. 3 compares each raw sample with gravity. A body that
 // accelerates (a person's steps, a hand moving a device around) adds accelerations that
 // average to zero over a few seconds but not over one sample; the R levels of §3.1 only
 // trust the sample less. Filtering in the body frame would smear gravity whenever the body
@@ -11,22 +11,33 @@
 // constant in that frame up to the slow gyro drift, so it passes; the accelerations of the
 // motion are filtered out. The same idea drives VQF's accelerometer correction (Laidig &
 // Seel 2023); here its output is simply the measurement a_k of eq. 3.7a.
+//
+// For the magnetometer, with a short time constant, it takes the white noise out of the field
+// (strength and dip tests of §4.2 compare samples with thresholds, and the heading observer
+// sees the field) without the lag a body-frame filter would have while the body turns.
 #include "headingd/core/low_pass.hpp"
 #include "headingd/core/quaternion.hpp"
 
 namespace headingd::core {
 
-class AccelPrefilter {
+class GyroFrameLowPass {
  public:
   // time_constant_s = 0 turns the filter off: the raw sample goes through (the thesis).
-  explicit AccelPrefilter(double time_constant_s) : time_constant_s_(time_constant_s), filtered_(time_constant_s) {}
+  explicit GyroFrameLowPass(double time_constant_s) : time_constant_s_(time_constant_s), filtered_(time_constant_s) {}
 
-  // Returns the filtered specific force in the current body axes.
-  Vec3 update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s) {
-    return update(gyroIncrement(gyro_rad_s, dt_s), accel_m_s2, dt_s);
+  // Returns the filtered vector in the current body axes.
+  Vec3 update(const Vec3& gyro_rad_s, const Vec3& body_vector, double dt_s) {
+    return update(gyroIncrement(gyro_rad_s, dt_s), body_vector, dt_s);
   }
   // The same with the sample's rotation already computed (gyroIncrement).
-  Vec3 update(const Quat& increment, const Vec3& accel_m_s2, double dt_s);
+  Vec3 update(const Quat& increment, const Vec3& body_vector, double dt_s) {
+    advance(increment);
+    return add(body_vector, dt_s);
+  }
+  // The two halves, for a sensor that has no sample at every gyro sample: the frame must
+  // follow every rotation, the filter takes the samples there are.
+  void advance(const Quat& increment);
+  Vec3 add(const Vec3& body_vector, double dt_s);
 
   // Forget the history (after a gap: the gyro frame is not valid across it).
   void restart();

@@ -1,0 +1,70 @@
+#pragma once
+// True heading: the attitude estimator plus what GPS and the World Magnetic Model add
+// (issue 4): the WMM field at the GPS position for the disturbance tests (Henriksson §4.2),
+// the mounting yaw from the gait, and the declination from WMM, GPS course (ch. 5) and the
+// receiver's magnetic variation. Pure and deterministic like the Estimator; the caller feeds
+// IMU samples and GPS epochs in time order on one time axis.
+#include <cstdint>
+#include <optional>
+
+#include "headingd/core/declination_estimator.hpp"
+#include "headingd/core/estimator.hpp"
+#include "headingd/core/gait_mount_yaw.hpp"
+#include "headingd/core/gps_observation.hpp"
+#include "headingd/core/wmm.hpp"
+
+namespace headingd::core {
+
+// Which sources the declination came from (a bit set; none = no declination known yet).
+enum DeclinationSource : unsigned { kDeclNone = 0, kDeclWmm = 1, kDeclGps = 2, kDeclReceiver = 4 };
+// "none", "wmm", "wmm+gps", "gps+receiver", …
+const char* declinationSourceName(unsigned sources);
+
+struct HeadingOutput {
+  EstimatorOutput attitude;        // the sensor's attitude, magnetic north
+  double heading_mag_rad = 0.0;    // sensor x-axis heading from magnetic north
+  double declination_rad = 0.0;
+  double declination_sigma_rad = 0.0;
+  unsigned declination_sources = kDeclNone;
+  double mount_yaw_rad = 0.0;      // sensor turned from body about down (gait_mount_yaw.hpp)
+  double mount_yaw_sigma_rad = 0.0;
+  double heading_true_rad = 0.0;   // the body's heading from geographic north
+};
+
+class HeadingPipeline {
+ public:
+  // wmm may be null (no model: no reference field, declination from GPS/receiver only).
+  HeadingPipeline(const EstimatorParams& params, const WorldMagneticModel* wmm);
+
+  SampleVerdict process(const ImuSample& sample);
+  void processGps(const GpsObservation& gps);
+
+  const HeadingOutput& output() const { return out_; }
+  const Estimator& estimator() const { return estimator_; }
+  std::uint64_t gpsEpochsUsedForDeclination() const { return course_minus_heading_.epochs(); }
+
+ private:
+  bool courseGatesPass(const GpsObservation& gps, double sensor_heading) const;
+  void updateOutput();
+
+  EstimatorParams p_;
+  const WorldMagneticModel* wmm_;
+  Estimator estimator_;
+  GaitMountYawEstimator gait_;
+  CourseMinusHeading course_minus_heading_;
+  HeadingOutput out_;
+
+  std::optional<double> wmm_declination_rad_;
+  std::optional<double> receiver_magvar_rad_;
+  std::int64_t last_sample_ns_ = 0;
+  bool have_sample_ = false;
+  std::int64_t last_disturbed_ns_ = 0;
+  bool ever_disturbed_ = false;
+  std::optional<std::int64_t> last_walking_gps_ns_;
+  // The previous GPS epoch, for the walking-straight gate.
+  std::optional<std::int64_t> previous_gps_ns_;
+  double previous_course_rad_ = 0.0;
+  double previous_sensor_heading_rad_ = 0.0;
+};
+
+}  // namespace headingd::core

@@ -1,0 +1,119 @@
+#include "headingd/core/heading_pipeline.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace headingd::core {
+
+const char* declinationSourceName(unsigned s) {
+  static const char* const kNames[8] = {"none",    "wmm",         "gps",         "wmm+gps",
+                                        "receiver", "wmm+receiver", "gps+receiver", "wmm+gps+receiver"};
+  return kNames[s & 7u];
+}
+
+HeadingPipeline::HeadingPipeline(const EstimatorParams& params, const WorldMagneticModel* wmm)
+    : p_(params),
+      wmm_(wmm),
+      estimator_(params),
+      gait_(params.gait_high_pass_time_constant_s),
+      course_minus_heading_(params.decl_direction_width_rad, static_cast<int>(params.decl_min_direction_epochs)) {}
+
+SampleVerdict HeadingPipeline::process(const ImuSample& s) {
+  const SampleVerdict verdict = estimator_.process(s);
+  if (verdict != SampleVerdict::kAccepted) {
+    if (verdict != SampleVerdict::kDuplicateTime && verdict != SampleVerdict::kBackwardsTime &&
+        verdict != SampleVerdict::kNonFinite && verdict != SampleVerdict::kOutOfRange) {
+      last_sample_ns_ = s.t_ns;
+      have_sample_ = true;
+    }
+    updateOutput();
+    return verdict;
+  }
+  const double dt_s = have_sample_ ? static_cast<double>(s.t_ns - last_sample_ns_) * 1e-9 : 0.0;
+  last_sample_ns_ = s.t_ns;
+  have_sample_ = true;
+  const EstimatorOutput& a = estimator_.output();
+  if (a.mag_disturbed) {
+    last_disturbed_ns_ = s.t_ns;
+    ever_disturbed_ = true;
+  }
+  const bool walking = last_walking_gps_ns_ && s.t_ns - *last_walking_gps_ns_ < 2'000'000'000 && a.head_height > 0.8;
+  if (walking && a.valid) gait_.update(a.q_nb, s.accel_m_s2, dt_s, p_.gravity_m_s2);
+  updateOutput();
+  return verdict;
+}
+
+bool HeadingPipeline::courseGatesPass(const GpsObservation& gps, double sensor_heading) const {
+  const EstimatorOutput& a = estimator_.output();
+  if (!gps.fix_ok || !gps.course_rad || !gps.speed_mps || !a.valid) return false;
+  if (*gps.speed_mps < p_.decl_min_speed_mps) return false;
+  if (gps.hdop && *gps.hdop > p_.decl_max_hdop) return false;
+  if (a.head_height < 0.8) return false;  // upright: the x-axis heading is well defined
+  if (ever_disturbed_ && gps.t_ns - last_disturbed_ns_ < static_cast<std::int64_t>(p_.decl_min_undisturbed_s * 1e9)) {
+    return false;
+  }
+  // Walking straight: neither the course nor the magnetic heading turned faster than the
+  // limit since the previous epoch (which must be recent).
+  if (!previous_gps_ns_) return false;
+  const double dt = static_cast<double>(gps.t_ns - *previous_gps_ns_) * 1e-9;
+  if (!(dt > 0.0 && dt <= 2.0)) return false;
+  const double course_rate = std::abs(wrapAngle(*gps.course_rad - previous_course_rad_)) / dt;
+  const double heading_rate = std::abs(wrapAngle(sensor_heading - previous_sensor_heading_rad_)) / dt;
+  return course_rate <= p_.decl_max_turn_rate_rad_s && heading_rate <= p_.decl_max_turn_rate_rad_s;
+}
+
+void HeadingPipeline::processGps(const GpsObservation& gps) {
+  if (gps.fix_ok && gps.position && gps.decimal_year && wmm_ != nullptr) {
+    const MagneticFieldElements field = wmm_->field(*gps.position, *gps.decimal_year);
+    constexpr double kRad = std::numbers::pi / 180.0;
+    estimator_.setReferenceField(field.f_nT * 1e-3, field.inclination_deg * kRad);
+    wmm_declination_rad_ = field.declination_deg * kRad;
+  }
+  if (gps.magvar_rad) receiver_magvar_rad_ = *gps.magvar_rad;
+  if (gps.fix_ok && gps.speed_mps && *gps.speed_mps >= p_.gait_min_speed_mps) last_walking_gps_ns_ = gps.t_ns;
+
+  const double sensor_heading = out_.heading_mag_rad;
+  if (courseGatesPass(gps, sensor_heading)) course_minus_heading_.add(*gps.course_rad, sensor_heading);
+  if (gps.fix_ok && gps.course_rad) {
+    previous_gps_ns_ = gps.t_ns;
+    previous_course_rad_ = *gps.course_rad;
+    previous_sensor_heading_rad_ = sensor_heading;
+  } else {
+    previous_gps_ns_.reset();
+  }
+  updateOutput();
+}
+
+void HeadingPipeline::updateOutput() {
+  out_.attitude = estimator_.output();
+  out_.heading_mag_rad = out_.attitude.euler.yaw_rad;
+
+  out_.mount_yaw_rad = gait_.mountYawRad();
+  out_.mount_yaw_sigma_rad = gait_.hasEstimate() ? gait_.sigmaRad() : p_.mount_yaw_prior_sigma_rad;
+
+  std::vector<AngleEstimate> sources;
+  unsigned used = kDeclNone;
+  if (wmm_declination_rad_) {
+    sources.push_back({*wmm_declination_rad_, p_.decl_wmm_sigma_rad});
+    used |= kDeclWmm;
+  }
+  AngleEstimate course_minus_heading;
+  if (course_minus_heading_.estimate(&course_minus_heading)) {
+    // Course - sensor heading = declination - mounting yaw (the sensor's x-axis points at
+    // body heading + mounting yaw).
+    const double sigma = std::hypot(course_minus_heading.sigma_rad, out_.mount_yaw_sigma_rad);
+    sources.push_back({wrapAngle(course_minus_heading.value_rad + out_.mount_yaw_rad), sigma});
+    used |= kDeclGps;
+  }
+  if (receiver_magvar_rad_) {
+    sources.push_back({*receiver_magvar_rad_, p_.decl_receiver_sigma_rad});
+    used |= kDeclReceiver;
+  }
+  const AngleEstimate declination = fuseAngles(sources);
+  out_.declination_sources = used;
+  out_.declination_rad = used == kDeclNone ? 0.0 : declination.value_rad;
+  out_.declination_sigma_rad = declination.sigma_rad;
+  out_.heading_true_rad = wrapAngle(out_.heading_mag_rad - out_.mount_yaw_rad + out_.declination_rad);
+}
+
+}  // namespace headingd::core

@@ -1,0 +1,48 @@
+#pragma once
+// The true motion of the person, sampled at the IMU rate: attitude of the body, position,
+// velocity and acceleration in a local NED frame whose origin is the ground under the
+// starting point.
+//
+// Consistency: positions come from integrating the speed along the path plus the gait
+// excursions; velocity and acceleration are the central first and second differences of
+// those positions, so GPS positions, velocities and the accelerometer all describe the same
+// motion. Attitudes are built from zyx Euler angles (yaw = path heading + trunk rotation,
+// pitch and roll = posture + gait oscillation + sway); the gyroscope is derived from
+// consecutive attitudes (imu_model.hpp), never from Euler rates.
+#include <cstddef>
+#include <vector>
+
+#include "headingd/core/quaternion.hpp"
+#include "headingd/sim/rng.hpp"
+#include "headingd/sim/scenario.hpp"
+
+namespace headingd::sim {
+
+struct TruthState {
+  double t_s = 0.0;
+  core::Quat q_nb = core::Quat::Identity();  // body to NED
+  core::Vec3 position_ned_m = core::Vec3::Zero();
+  core::Vec3 velocity_ned_mps = core::Vec3::Zero();
+  core::Vec3 accel_ned_mps2 = core::Vec3::Zero();  // kinematic, gravity not included
+  double path_heading_rad = 0.0;  // direction of travel the person intends (no gait wobble)
+  std::size_t phase = 0;
+  Activity activity = Activity::kStanding;
+  bool indoor = false;
+  // Anything but still standing or lying: walking, turning, getting up or down.
+  bool moving = false;
+};
+
+struct Trajectory {
+  double rate_hz = 0.0;
+  // Row k is at t = k / rate_hz, k = 0 .. floor(duration · rate_hz).
+  std::vector<TruthState> states;
+  // The body attitude one sample before t = 0: the first gyro row covers (-1/rate, 0].
+  core::Quat q_nb_before_start = core::Quat::Identity();
+};
+
+// `rng` gives the small person-to-person and step-to-step variations (speed and cadence
+// modulation, heading wander when walking "straight"). Throws std::invalid_argument for a
+// non-positive rate or an empty scenario.
+Trajectory generateTrajectory(const Scenario& scenario, double rate_hz, Rng rng);
+
+}  // namespace headingd::sim
