@@ -119,6 +119,14 @@ void FixAccumulator::updateMode() {
   }
 }
 
+void FixAccumulator::takePosition(const Position& position, std::optional<double> alt_msl_m,
+                                  std::optional<double> geoid_separation_m) {
+  fix_.position = position;
+  if (alt_msl_m) fix_.alt_msl_m = alt_msl_m;
+  if (geoid_separation_m) fix_.geoid_separation_m = geoid_separation_m;
+  markValid();
+}
+
 void FixAccumulator::applyGga(const Gga& g) {
   if (g.time_of_day_ns) enterEpoch(*g.time_of_day_ns);
   fix_.quality = g.quality;
@@ -129,10 +137,7 @@ void FixAccumulator::applyGga(const Gga& g) {
     markNoFix();
     return;
   }
-  fix_.position = g.position;
-  if (g.alt_msl_m) fix_.alt_msl_m = g.alt_msl_m;
-  if (g.geoid_separation_m) fix_.geoid_separation_m = g.geoid_separation_m;
-  markValid();
+  takePosition(*g.position, g.alt_msl_m, g.geoid_separation_m);
 }
 
 void FixAccumulator::applyRmc(const Rmc& r) {
@@ -171,10 +176,7 @@ void FixAccumulator::applyGns(const Gns& g) {
     markNoFix();
     return;
   }
-  fix_.position = g.position;
-  if (g.alt_msl_m) fix_.alt_msl_m = g.alt_msl_m;
-  if (g.geoid_separation_m) fix_.geoid_separation_m = g.geoid_separation_m;
-  markValid();
+  takePosition(*g.position, g.alt_msl_m, g.geoid_separation_m);
 }
 
 void FixAccumulator::applyGll(const Gll& g) {

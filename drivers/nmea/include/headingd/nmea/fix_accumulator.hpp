@@ -59,6 +59,9 @@ class FixAccumulator {
   void setDate(const CivilDate& date, std::int64_t time_of_day_ns);
   void updateUtc();
   void markNoFix();
+  // A GGA or GNS position with its altitudes (GGA and GNS carry the same fields).
+  void takePosition(const Position& position, std::optional<double> alt_msl_m,
+                    std::optional<double> geoid_separation_m);
   void markValid();  // a valid position sentence: mode from GSA, else from altitude
   void updateMode();
 
