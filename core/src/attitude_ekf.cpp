@@ -1,5 +1,7 @@
 #include "headingd/core/attitude_ekf.hpp"
 
+#include <cmath>
+
 namespace headingd::core {
 
 namespace {
@@ -67,6 +69,16 @@ void AttitudeEkf::setAttitude(const Quat& q_nb) {
   const Mat4 carry = earthAxisDirections(q_new) * earthAxisDirections(q_).transpose();
   P_ = carry * P_ * carry.transpose();
   q_ = q_new;
+}
+
+void AttitudeEkf::turnHeading(double angle_rad) {
+  const Quat turned = Quat(std::cos(0.5 * angle_rad), 0.0, 0.0, std::sin(0.5 * angle_rad)) * fromWxyz(q_);
+  if (std::abs(angle_rad) >= 0.01) {
+    setAttitude(turned);
+    return;
+  }
+  q_ = toWxyz(turned);
+  normalise();
 }
 
 void AttitudeEkf::normalise() {

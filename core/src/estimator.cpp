@@ -165,7 +165,7 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
     gain = std::max(magObserverGain(dt_s, p_.mag_heading_time_constant_s), dt_s / mag_seconds_);
   }
   heading_aligned_ = true;
-  ekf_.setAttitude(applyHeadingCorrection(ekf_.attitude(), m.innovation_rad, gain));
+  ekf_.turnHeading(gain * m.innovation_rad);
   out_.mag_used = true;
   out_.mag_gain = gain;
   out_.mag_innovation_rad = m.innovation_rad;

@@ -13,12 +13,12 @@ MagHeadingMeasurement measureMagHeading(const Quat& q_nb, const Vec3& mag_uT, do
   if (!(total > 0.0) || m.horizontal_uT < min_horizontal_fraction * total) return m;
   m.dip_rad = std::atan2(field_n.z(), m.horizontal_uT);
   m.innovation_rad = -std::atan2(field_n.y(), field_n.x());
-  // Heading of the body x-axis (eq. 2.31a) plus the innovation.
-  const double yaw = std::atan2(2.0 * (q_nb.x() * q_nb.y() + q_nb.w() * q_nb.z()),
-                                1.0 - 2.0 * (q_nb.y() * q_nb.y() + q_nb.z() * q_nb.z()));
-  m.measured_heading_rad = wrapAngle(yaw + m.innovation_rad);
   m.valid = true;
   return m;
+}
+
+double measuredHeading(const Quat& q_nb, const MagHeadingMeasurement& m) {
+  return wrapAngle(eulerZyx(q_nb).yaw_rad + m.innovation_rad);
 }
 
 double magObserverGain(double dt_s, double time_constant_s) {

@@ -32,7 +32,7 @@ TEST(MagHeading, MeasuredHeadingIsTheTrueYawForAnyTiltAndWrongYaw) {
 
           const MagHeadingMeasurement m = measureMagHeading(estimate, mag_b, 0.1);
           ASSERT_TRUE(m.valid);
-          EXPECT_NEAR(test::angleDifference(m.measured_heading_rad, yaw), 0.0, 1e-9)
+          EXPECT_NEAR(test::angleDifference(measuredHeading(estimate, m), yaw), 0.0, 1e-9)
               << roll_deg << " " << pitch_deg << " " << yaw_deg << " " << error_deg;
           EXPECT_NEAR(m.innovation_rad, wrapAngle(yaw - wrong_yaw), 1e-9)
               << roll_deg << " " << pitch_deg << " " << yaw_deg << " " << error_deg;
@@ -67,7 +67,7 @@ TEST(MagHeading, NorthEastComponentGivesTheMagneticHeading) {
   const Quat truth = test::fromYawPitchRoll(1.0, 0.2, -0.3);
   const MagHeadingMeasurement m = measureMagHeading(truth, truth.inverse() * field, 0.1);
   ASSERT_TRUE(m.valid);
-  EXPECT_NEAR(m.measured_heading_rad, 1.0 - declination, 1e-12);
+  EXPECT_NEAR(measuredHeading(truth, m), 1.0 - declination, 1e-12);
 }
 
 TEST(MagHeading, VerticalFieldGivesNoHeading) {

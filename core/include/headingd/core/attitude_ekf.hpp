@@ -29,6 +29,13 @@ class AttitudeEkf {
   // covariance is kept: the replacement is a better estimate of the same state.
   void setAttitude(const Quat& q_nb);
 
+  // Turns the attitude about NED down by angle_rad: the magnetometer observer's correction
+  // (Henriksson eq. 4.2), a few 1e-4 rad per sample. Below 0.01 rad P is not carried: P only
+  // describes tilt (keepHeadingOutOfTilt), a turn about down leaves the tilt error's size
+  // unchanged and only turns its axes by the angle, and the next update re-expresses P at
+  // the new q anyway; this saves the carry's matrix products on every sample.
+  void turnHeading(double angle_rad);
+
   Quat attitude() const { return fromWxyz(q_); }
   const Vec4& state() const { return q_; }
   const Mat4& covariance() const { return P_; }

@@ -13,7 +13,6 @@ struct MagHeadingMeasurement {
   bool valid = false;
   // ψ_mm - ψ_pred, wrapped to (-π, π]: how far the field says the heading is off.
   double innovation_rad = 0.0;
-  double measured_heading_rad = 0.0;  // ψ_mm
   double horizontal_uT = 0.0;
   double dip_rad = 0.0;  // angle of the field below the horizon
 };
@@ -22,6 +21,10 @@ struct MagHeadingMeasurement {
 // is R_z(ψ) m_h, so ψ_mm = ψ - atan2(m_n,y, m_n,x), computed without Euler angles and hence
 // without a singularity at pitch ±90° (where ψ itself is undefined).
 MagHeadingMeasurement measureMagHeading(const Quat& q_nb, const Vec3& mag_uT, double min_horizontal_fraction);
+
+// ψ_mm itself: the heading of the body x-axis (eq. 2.31a) plus the innovation. Not part of
+// the measurement because the observer needs only the innovation (and atan2 is costly).
+double measuredHeading(const Quat& q_nb, const MagHeadingMeasurement& m);
 
 // Gain of eq. 4.2 for a time constant and the actual sample period.
 double magObserverGain(double dt_s, double time_constant_s);

@@ -30,10 +30,11 @@ class NoiseFloor {
       next_ = (next_ + 1) % bins_.size();
       current_ = kNone;
       bin_elapsed_s_ = 0.0;
+      closed_minimum_ = *std::min_element(bins_.begin(), bins_.end());  // once a second, not per sample
     }
   }
   // +∞ until the warm-up is over.
-  double value() const { return std::min(current_, *std::min_element(bins_.begin(), bins_.end())); }
+  double value() const { return std::min(current_, closed_minimum_); }
   // factor · floor, at least `minimum` and at most `maximum`; `minimum` while nothing is known.
   double threshold(double factor, double minimum, double maximum) const {
     const double floor = value();
@@ -50,6 +51,7 @@ class NoiseFloor {
   double current_ = kNone;
   std::array<double, 60> bins_;  // one minimum per second, the last minute
   std::size_t next_ = 0;
+  double closed_minimum_ = kNone;  // minimum of bins_
 };
 
 }  // namespace headingd::core
