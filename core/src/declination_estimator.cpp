@@ -42,7 +42,7 @@ bool CourseMinusHeading::estimate(AngleEstimate* out) const {
   return true;
 }
 
-AngleEstimate fuseAngles(const std::vector<AngleEstimate>& estimates) {
+AngleEstimate fuseAngles(std::span<const AngleEstimate> estimates) {
   if (estimates.empty()) return {0.0, std::numeric_limits<double>::infinity()};
   const double about = estimates.front().value_rad;
   double weight_sum = 0.0, weighted = 0.0;

@@ -1,5 +1,6 @@
 #include "headingd/core/heading_pipeline.hpp"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -16,7 +17,9 @@ HeadingPipeline::HeadingPipeline(const EstimatorParams& params, const WorldMagne
       wmm_(wmm),
       estimator_(params),
       gait_(params.gait_high_pass_time_constant_s),
-      course_minus_heading_(params.decl_direction_width_rad, static_cast<int>(params.decl_min_direction_epochs)) {}
+      course_minus_heading_(params.decl_direction_width_rad, static_cast<int>(params.decl_min_direction_epochs)) {
+  updateDeclination();  // no source yet: declination unknown (σ = ∞), mounting yaw the prior
+}
 
 SampleVerdict HeadingPipeline::process(const ImuSample& s) {
   const SampleVerdict verdict = estimator_.process(s);
@@ -81,20 +84,19 @@ void HeadingPipeline::processGps(const GpsObservation& gps) {
   } else {
     previous_gps_ns_.reset();
   }
+  updateDeclination();
   updateOutput();
 }
 
-void HeadingPipeline::updateOutput() {
-  out_.attitude = estimator_.output();
-  out_.heading_mag_rad = out_.attitude.euler.yaw_rad;
-
+void HeadingPipeline::updateDeclination() {
   out_.mount_yaw_rad = gait_.mountYawRad();
   out_.mount_yaw_sigma_rad = gait_.hasEstimate() ? gait_.sigmaRad() : p_.mount_yaw_prior_sigma_rad;
 
-  std::vector<AngleEstimate> sources;
+  std::array<AngleEstimate, 3> sources;
+  std::size_t n = 0;
   unsigned used = kDeclNone;
   if (wmm_declination_rad_) {
-    sources.push_back({*wmm_declination_rad_, p_.decl_wmm_sigma_rad});
+    sources[n++] = {*wmm_declination_rad_, p_.decl_wmm_sigma_rad};
     used |= kDeclWmm;
   }
   AngleEstimate course_minus_heading;
@@ -102,17 +104,22 @@ void HeadingPipeline::updateOutput() {
     // Course - sensor heading = declination - mounting yaw (the sensor's x-axis points at
     // body heading + mounting yaw).
     const double sigma = std::hypot(course_minus_heading.sigma_rad, out_.mount_yaw_sigma_rad);
-    sources.push_back({wrapAngle(course_minus_heading.value_rad + out_.mount_yaw_rad), sigma});
+    sources[n++] = {wrapAngle(course_minus_heading.value_rad + out_.mount_yaw_rad), sigma};
     used |= kDeclGps;
   }
   if (receiver_magvar_rad_) {
-    sources.push_back({*receiver_magvar_rad_, p_.decl_receiver_sigma_rad});
+    sources[n++] = {*receiver_magvar_rad_, p_.decl_receiver_sigma_rad};
     used |= kDeclReceiver;
   }
-  const AngleEstimate declination = fuseAngles(sources);
+  const AngleEstimate declination = fuseAngles(std::span<const AngleEstimate>(sources.data(), n));
   out_.declination_sources = used;
   out_.declination_rad = used == kDeclNone ? 0.0 : declination.value_rad;
   out_.declination_sigma_rad = declination.sigma_rad;
+}
+
+void HeadingPipeline::updateOutput() {
+  out_.attitude = estimator_.output();
+  out_.heading_mag_rad = out_.attitude.euler.yaw_rad;
   out_.heading_true_rad = wrapAngle(out_.heading_mag_rad - out_.mount_yaw_rad + out_.declination_rad);
 }
 

@@ -82,10 +82,12 @@ TEST(CourseMinusHeading, AveragesOverDirectionsEq51) {
 }
 
 TEST(FuseAngles, InverseVarianceAcrossPlusMinus180) {
-  const AngleEstimate fused = fuseAngles({{179.0 * kRad, 1.0 * kRad}, {-179.0 * kRad, 1.0 * kRad}});
+  const AngleEstimate two[] = {{179.0 * kRad, 1.0 * kRad}, {-179.0 * kRad, 1.0 * kRad}};
+  const AngleEstimate fused = fuseAngles(two);
   EXPECT_NEAR(std::abs(fused.value_rad) / kRad, 180.0, 1e-9);
   EXPECT_NEAR(fused.sigma_rad / kRad, 1.0 / std::sqrt(2.0), 1e-9);
-  const AngleEstimate weighted = fuseAngles({{10.0 * kRad, 1.0 * kRad}, {20.0 * kRad, 3.0 * kRad}});
+  const AngleEstimate unequal[] = {{10.0 * kRad, 1.0 * kRad}, {20.0 * kRad, 3.0 * kRad}};
+  const AngleEstimate weighted = fuseAngles(unequal);
   EXPECT_NEAR(weighted.value_rad / kRad, 11.0, 1e-9);  // weights 9:1
   EXPECT_TRUE(std::isinf(fuseAngles({}).sigma_rad));
 }

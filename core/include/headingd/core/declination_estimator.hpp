@@ -7,6 +7,7 @@
 // hard-iron offset, averages out rather than weighting the most-walked direction). Both
 // means are circular (circular_mean.hpp). The difference is declination minus the IMU's
 // mounting yaw; the caller adds the mounting yaw (gait_mount_yaw.hpp).
+#include <span>
 #include <vector>
 
 #include "headingd/core/circular_mean.hpp"
@@ -43,6 +44,6 @@ class CourseMinusHeading {
 
 // Inverse-variance mean of independent estimates of one angle (taken about the first, so
 // that estimates on either side of ±180° combine correctly).
-AngleEstimate fuseAngles(const std::vector<AngleEstimate>& estimates);
+AngleEstimate fuseAngles(std::span<const AngleEstimate> estimates);
 
 }  // namespace headingd::core

@@ -45,7 +45,8 @@ class HeadingPipeline {
 
  private:
   bool courseGatesPass(const GpsObservation& gps, double sensor_heading) const;
-  void updateOutput();
+  void updateDeclination();  // at GPS epochs: the sources change only then
+  void updateOutput();       // every sample: cheap, no allocation
 
   EstimatorParams p_;
   const WorldMagneticModel* wmm_;
