@@ -15,11 +15,21 @@ void GaitMountYawEstimator::update(const Quat& q_nb, const Vec3& accel_m_s2, dou
   const double c = std::cos(sensor_heading), s = std::sin(sensor_heading);
   const Eigen::Vector2d horizontal(c * accel_n.x() + s * accel_n.y(), -s * accel_n.x() + c * accel_n.y());
   const Eigen::Vector2d varying = horizontal - mean_.update(horizontal, dt_s);
-  sxx_ += dt_s * varying.x() * varying.x();
-  syy_ += dt_s * varying.y() * varying.y();
-  sxy_ += dt_s * varying.x() * varying.y();
+  const double xx = dt_s * varying.x() * varying.x(), yy = dt_s * varying.y() * varying.y(),
+               xy = dt_s * varying.x() * varying.y();
+  sxx_ += xx;
+  syy_ += yy;
+  sxy_ += xy;
   weight_ += dt_s;
   walking_seconds_ += dt_s;
+  block_sxx_ += xx;
+  block_syy_ += yy;
+  block_sxy_ += xy;
+  block_seconds_ += dt_s;
+  if (block_seconds_ >= kBlockSeconds) {
+    block_axes_.add(std::atan2(2.0 * block_sxy_, block_sxx_ - block_syy_));  // 2φ of this block
+    block_sxx_ = block_syy_ = block_sxy_ = block_seconds_ = 0.0;
+  }
 }
 
 double GaitMountYawEstimator::mountYawRad() const {
@@ -31,15 +41,9 @@ double GaitMountYawEstimator::mountYawRad() const {
 
 double GaitMountYawEstimator::sigmaRad() const {
   if (!hasEstimate()) return std::numeric_limits<double>::infinity();
-  const double mean = 0.5 * (sxx_ + syy_) / weight_;
-  const double half_diff = 0.5 * std::hypot(sxx_ - syy_, 2.0 * sxy_) / weight_;
-  const double major = mean + half_diff, minor = std::max(mean - half_diff, 0.0);
-  if (major - minor <= 0.0) return std::numbers::pi / 2.0;  // isotropic: no direction at all
-  // Standard error of a principal axis from n independent samples:
-  // var(φ) ≈ λ1 λ2 / (n (λ1 - λ2)²). Samples within one step are correlated; we count one
-  // independent sample per half second (about one step).
-  const double independent = std::max(walking_seconds_ / 0.5, 1.0);
-  return std::sqrt(major * minor / independent) / (major - minor);
+  // Fewer than three blocks say little about their spread: stay at a cautious 10°.
+  if (block_axes_.count() < 3) return 10.0 * std::numbers::pi / 180.0;
+  return 0.5 * block_axes_.standardError();  // halved: the blocks' angles are doubled
 }
 
 }  // namespace headingd::core

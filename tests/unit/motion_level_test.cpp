@@ -360,7 +360,8 @@ TEST(GyroBiasEstimator, BiasFollowsADriftAtRest) {
   RestSamples rest{Vec3(0.01, 0.0, 0.0), 0.0005};
   for (int i = 0; i < 500; ++i) est.update(rest.gyro(), rest.accel(), 0.01);
   rest.bias = Vec3(0.015, 0.0, 0.0);
-  for (int i = 0; i < 3000; ++i) est.update(rest.gyro(), rest.accel(), 0.01);  // 10 τ
+  const int ten_tau = static_cast<int>(10.0 * p.bias_time_constant_s / 0.01);
+  for (int i = 0; i < ten_tau; ++i) est.update(rest.gyro(), rest.accel(), 0.01);
   EXPECT_NEAR(est.bias().x(), 0.015, 1e-4);
 }
 

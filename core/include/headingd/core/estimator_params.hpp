@@ -130,7 +130,7 @@ struct EstimatorParams {
   double rest_min_duration_s = 1.5;
   double rest_filter_time_constant_s = 0.5;
   // Time constant of the bias low-pass while at rest.
-  double bias_time_constant_s = 3.0;
+  double bias_time_constant_s = 10.0;
   // The bias estimate is clamped to this magnitude (a larger one means rest was misjudged).
   double bias_max_rad_s = 0.1;
 };

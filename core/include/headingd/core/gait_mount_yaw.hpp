@@ -14,6 +14,7 @@
 // mount_yaw, and the body's forward axis lies at -mount_yaw in the sensor's heading frame.
 // The principal axis has a 180° ambiguity; we take the one within ±90° of the sensor's
 // x-axis (an IMU is not worn backwards), stated here because it is an assumption.
+#include "headingd/core/circular_mean.hpp"
 #include "headingd/core/low_pass.hpp"
 #include "headingd/core/quaternion.hpp"
 
@@ -30,13 +31,21 @@ class GaitMountYawEstimator {
 
   bool hasEstimate() const { return walking_seconds_ >= 10.0; }
   double mountYawRad() const;   // 0 before there is an estimate
-  double sigmaRad() const;      // uncertainty of mountYawRad (∞ before there is an estimate)
+  // Uncertainty of mountYawRad (∞ before there is an estimate), by batch means: the walk is
+  // cut into blocks of kBlockSeconds, each block gives its own principal axis, and the
+  // spread of those over √(blocks) is the standard error. Step samples are strongly
+  // correlated (a gait is nearly periodic), so treating them as independent would be wrong
+  // either way; blocks of many steps are close to independent.
+  double sigmaRad() const;
   double walkingSeconds() const { return walking_seconds_; }
 
  private:
   LowPass<Eigen::Vector2d> mean_;
   // Second moments of the high-passed horizontal acceleration in the sensor heading frame.
   double sxx_ = 0.0, syy_ = 0.0, sxy_ = 0.0, weight_ = 0.0;
+  static constexpr double kBlockSeconds = 10.0;
+  double block_sxx_ = 0.0, block_syy_ = 0.0, block_sxy_ = 0.0, block_seconds_ = 0.0;
+  CircularMean block_axes_;  // doubled angles (an axis is defined modulo 180°)
   double walking_seconds_ = 0.0;
 };
 
