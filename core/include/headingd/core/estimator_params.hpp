@@ -66,7 +66,7 @@ struct EstimatorParams {
 
   // --- Magnetometer heading observer (Henriksson eq. 4.2) ---
   // K = 1 - exp(-dt/τ): the magnetometer pulls the heading with this time constant.
-  double mag_heading_time_constant_s = 15.0;
+  double mag_heading_time_constant_s = 10.0;
   // The horizontal field must be at least this share of the total field for a heading.
   double mag_min_horizontal_fraction = 0.1;
   // The field is low-passed in a gyro-integrated frame (gyro_frame_low_pass.hpp) with this
