@@ -146,7 +146,11 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
   }
   out_.mag_disturbance = mag_disturbance_.update(mag_uT.norm(), m.dip_rad, dt_s);
   out_.mag_disturbed = out_.mag_disturbance.any();
-  const bool onset = out_.mag_disturbed && !mag_was_disturbed_;
+  // A disturbance counts once it has lasted mag_restore_confirm_s: single noisy samples must
+  // not swap in a heading with seconds of gyro drift.
+  const double before = mag_disturbed_seconds_;
+  mag_disturbed_seconds_ = out_.mag_disturbed ? mag_disturbed_seconds_ + dt_s : 0.0;
+  const bool onset = before < p_.mag_restore_confirm_s && mag_disturbed_seconds_ >= p_.mag_restore_confirm_s;
   mag_was_disturbed_ = out_.mag_disturbed;
   if (out_.mag_disturbed) {
     ++mag_disturbed_;

@@ -96,6 +96,7 @@ class Estimator {
   std::uint64_t mag_disturbed_ = 0;
   std::uint64_t mag_heading_restores_ = 0;
   bool mag_was_disturbed_ = false;
+  double mag_disturbed_seconds_ = 0.0;
   std::uint64_t state_recoveries_ = 0;
 };
 
