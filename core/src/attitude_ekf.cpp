@@ -72,7 +72,7 @@ void AttitudeEkf::setAttitude(const Quat& q_nb) {
 }
 
 void AttitudeEkf::turnHeading(double angle_rad) {
-  const Quat turned = Quat(std::cos(0.5 * angle_rad), 0.0, 0.0, std::sin(0.5 * angle_rad)) * fromWxyz(q_);
+  const Quat turned = headingRotation(angle_rad) * fromWxyz(q_);
   if (std::abs(angle_rad) >= 0.01) {
     setAttitude(turned);
     return;

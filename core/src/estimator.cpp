@@ -41,6 +41,7 @@ Estimator::Estimator(const EstimatorParams& params)
                         p_.mag_max_reference_dip_deviation_rad}) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
+  out_.dt_s = 0.0;
   double dt_s = 0.0;
   bool mag_usable = false;
   const SampleVerdict verdict = gate_.check(s, &dt_s, &mag_usable);
@@ -87,6 +88,7 @@ void Estimator::initialise(const ImuSample& s, bool mag_usable) {
 }
 
 void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
+  out_.dt_s = dt_s;
   const Vec4 previous_state = ekf_.state();
   const Mat4 previous_covariance = ekf_.covariance();
 

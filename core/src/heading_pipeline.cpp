@@ -23,25 +23,17 @@ HeadingPipeline::HeadingPipeline(const EstimatorParams& params, const WorldMagne
 
 SampleVerdict HeadingPipeline::process(const ImuSample& s) {
   const SampleVerdict verdict = estimator_.process(s);
-  if (verdict != SampleVerdict::kAccepted) {
-    if (verdict != SampleVerdict::kDuplicateTime && verdict != SampleVerdict::kBackwardsTime &&
-        verdict != SampleVerdict::kNonFinite && verdict != SampleVerdict::kOutOfRange) {
-      last_sample_ns_ = s.t_ns;
-      have_sample_ = true;
-    }
+  const EstimatorOutput& a = estimator_.output();
+  if (verdict != SampleVerdict::kAccepted || a.dt_s <= 0.0) {
     updateOutput();
     return verdict;
   }
-  const double dt_s = have_sample_ ? static_cast<double>(s.t_ns - last_sample_ns_) * 1e-9 : 0.0;
-  last_sample_ns_ = s.t_ns;
-  have_sample_ = true;
-  const EstimatorOutput& a = estimator_.output();
   if (a.mag_disturbed) {
     last_disturbed_ns_ = s.t_ns;
     ever_disturbed_ = true;
   }
   const bool walking = last_walking_gps_ns_ && s.t_ns - *last_walking_gps_ns_ < 2'000'000'000 && a.head_height > 0.8;
-  if (walking && a.valid) gait_.update(a.q_nb, s.accel_m_s2, dt_s, p_.gravity_m_s2);
+  if (walking && a.valid) gait_.update(a.q_nb, s.accel_m_s2, a.dt_s, p_.gravity_m_s2);
   updateOutput();
   return verdict;
 }

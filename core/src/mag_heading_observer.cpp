@@ -29,8 +29,7 @@ double magObserverGain(double dt_s, double time_constant_s) {
 }
 
 Quat applyHeadingCorrection(const Quat& q_nb, double innovation_rad, double gain) {
-  const double half = 0.5 * gain * innovation_rad;
-  return (Quat(std::cos(half), 0.0, 0.0, std::sin(half)) * q_nb).normalized();  // about NED down
+  return (headingRotation(gain * innovation_rad) * q_nb).normalized();
 }
 
 }  // namespace headingd::core

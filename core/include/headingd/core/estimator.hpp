@@ -23,6 +23,7 @@ namespace headingd::core {
 struct EstimatorOutput {
   bool valid = false;  // false until the first usable sample
   std::int64_t t_ns = 0;
+  double dt_s = 0.0;  // period this sample was integrated over (0: not integrated)
   Quat q_nb = Quat::Identity();
   EulerAngles euler{0.0, 0.0, 0.0};  // yaw = heading of the body x-axis from magnetic north
   // Heading by the definition in use: ψ (x-axis) or, lying down, ψ_rd (-z axis, §3.3).

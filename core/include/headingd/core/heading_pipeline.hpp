@@ -57,8 +57,6 @@ class HeadingPipeline {
 
   std::optional<double> wmm_declination_rad_;
   std::optional<double> receiver_magvar_rad_;
-  std::int64_t last_sample_ns_ = 0;
-  bool have_sample_ = false;
   std::int64_t last_disturbed_ns_ = 0;
   bool ever_disturbed_ = false;
   std::optional<std::int64_t> last_walking_gps_ns_;
