@@ -18,6 +18,18 @@ packages=(
   libboost-dev         # Asio, Lockfree
   libgeographiclib-dev # World Magnetic Model, geodesy
   gzip                 # the demo recording and BROAD trials are gzip'd
+  liblcm-dev           # LCM messages (daemon)
+  liblcm-bin           # lcm-gen, lcm-logger
+  liblcm-java          # lcm.jar for lcm-spy and the Java message classes
+  libglib2.0-dev       # liblcm-dev's pkg-config file requires glib
+  default-jdk-headless # javac/jar: the lcm-spy jar of headingd's messages
+  libsystemd-dev       # sd_notify, watchdog (daemon)
+  systemd              # systemd-analyze verify in the tests
+  can-utils            # cansend/candump/canplayer in the vcan tests
+  qemu-system-x86      # the VM that gives the vcan tests a kernel with CAN
+  busybox-static       # the VM's initramfs userland
+  cpio                 # packs the initramfs
+  kmod                 # modinfo/depmod for the VM's CAN modules
 )
 
 missing=()
