@@ -1,5 +1,6 @@
 #include "headingd/core/heading_pipeline.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -25,6 +26,7 @@ SampleVerdict HeadingPipeline::process(const ImuSample& s) {
   const SampleVerdict verdict = estimator_.process(s);
   const EstimatorOutput& a = estimator_.output();
   if (verdict != SampleVerdict::kAccepted || a.dt_s <= 0.0) {
+    epoch_compass_.restart();
     updateOutput();
     return verdict;
   }
@@ -32,6 +34,7 @@ SampleVerdict HeadingPipeline::process(const ImuSample& s) {
     last_disturbed_ns_ = s.t_ns;
     ever_disturbed_ = true;
   }
+  epoch_compass_.add(s.gyro_rad_s - a.gyro_bias_rad_s, s.accel_m_s2, s.has_mag ? &s.mag_uT : nullptr, a.dt_s);
   const bool walking = last_walking_gps_ns_ && s.t_ns - *last_walking_gps_ns_ < 2'000'000'000 && a.head_height > 0.8;
   if (walking && a.valid) gait_.update(a.q_nb, s.accel_m_s2, a.dt_s, p_.gravity_m_s2);
   updateOutput();
@@ -57,6 +60,15 @@ bool HeadingPipeline::courseGatesPass(const GpsObservation& gps, double sensor_h
   return course_rate <= p_.decl_max_turn_rate_rad_s && heading_rate <= p_.decl_max_turn_rate_rad_s;
 }
 
+std::size_t HeadingPipeline::compassMinSamples(std::int64_t gps_t_ns) const {
+  // Half the samples the interval since the previous epoch should hold: an interval with
+  // a gap in the IMU data gives no compass heading.
+  const double period_s = estimator_.output().dt_s;
+  if (!previous_gps_ns_ || !(period_s > 0.0)) return 1;
+  const double interval_s = static_cast<double>(gps_t_ns - *previous_gps_ns_) * 1e-9;
+  return static_cast<std::size_t>(std::max(1.0, 0.5 * interval_s / period_s));
+}
+
 void HeadingPipeline::processGps(const GpsObservation& gps) {
   if (gps.fix_ok && gps.position && gps.decimal_year && wmm_ != nullptr) {
     const MagneticFieldElements field = wmm_->field(*gps.position, *gps.decimal_year);
@@ -67,8 +79,12 @@ void HeadingPipeline::processGps(const GpsObservation& gps) {
   if (gps.magvar_rad) receiver_magvar_rad_ = *gps.magvar_rad;
   if (gps.fix_ok && gps.speed_mps && *gps.speed_mps >= p_.gait_min_speed_mps) last_walking_gps_ns_ = gps.t_ns;
 
+  // The course is compared with the compass heading over the epoch interval; the filtered
+  // heading only gates on turning (it is the smoother of the two from epoch to epoch).
   const double sensor_heading = out_.heading_mag_rad;
-  if (courseGatesPass(gps, sensor_heading)) course_minus_heading_.add(*gps.course_rad, sensor_heading);
+  const std::optional<double> compass_heading =
+      epoch_compass_.takeHeading(compassMinSamples(gps.t_ns), p_.mag_min_horizontal_fraction);
+  if (compass_heading && courseGatesPass(gps, sensor_heading)) course_minus_heading_.add(*gps.course_rad, *compass_heading);
   if (gps.fix_ok && gps.course_rad) {
     previous_gps_ns_ = gps.t_ns;
     previous_course_rad_ = *gps.course_rad;
@@ -84,12 +100,28 @@ void HeadingPipeline::updateDeclination() {
   out_.mount_yaw_rad = gait_.mountYawRad();
   out_.mount_yaw_sigma_rad = gait_.hasEstimate() ? gait_.sigmaRad() : p_.mount_yaw_prior_sigma_rad;
 
-  std::array<AngleEstimate, 3> sources;
-  std::size_t n = 0;
+  // The WMM and the receiver's magnetic variation are both global models: a local anomaly
+  // (iron ore, a city) is an error they share, so together they are no surer than the
+  // better of the two. They are averaged into one model source with that σ; counting them as
+  // independent would pull the GPS estimate towards the models twice.
+  std::array<AngleEstimate, 2> models;
+  std::size_t n_models = 0;
   unsigned used = kDeclNone;
   if (wmm_declination_rad_) {
-    sources[n++] = {*wmm_declination_rad_, p_.decl_wmm_sigma_rad};
+    models[n_models++] = {*wmm_declination_rad_, p_.decl_wmm_sigma_rad};
     used |= kDeclWmm;
+  }
+  if (receiver_magvar_rad_) {
+    models[n_models++] = {*receiver_magvar_rad_, p_.decl_receiver_sigma_rad};
+    used |= kDeclReceiver;
+  }
+  std::array<AngleEstimate, 2> sources;
+  std::size_t n = 0;
+  if (n_models > 0) {
+    AngleEstimate model = fuseAngles(std::span<const AngleEstimate>(models.data(), n_models));
+    model.sigma_rad = std::min(p_.decl_wmm_sigma_rad, p_.decl_receiver_sigma_rad);
+    if (n_models == 1) model.sigma_rad = models[0].sigma_rad;
+    sources[n++] = model;
   }
   AngleEstimate course_minus_heading;
   if (course_minus_heading_.estimate(&course_minus_heading)) {
@@ -98,10 +130,6 @@ void HeadingPipeline::updateDeclination() {
     const double sigma = std::hypot(course_minus_heading.sigma_rad, out_.mount_yaw_sigma_rad);
     sources[n++] = {wrapAngle(course_minus_heading.value_rad + out_.mount_yaw_rad), sigma};
     used |= kDeclGps;
-  }
-  if (receiver_magvar_rad_) {
-    sources[n++] = {*receiver_magvar_rad_, p_.decl_receiver_sigma_rad};
-    used |= kDeclReceiver;
   }
   const AngleEstimate declination = fuseAngles(std::span<const AngleEstimate>(sources.data(), n));
   out_.declination_sources = used;

@@ -2,35 +2,55 @@
 # Henriksson §6.3 in simulation with the default configuration: four straight 50 s walks in
 # Stockholm, consumer-grade IMU and GPS. (1) a 3° local anomaly, no mounting yaw; (2) no
 # anomaly, a 3° mounting yaw. The final estimates are the last row of the replay's output.
-# Thresholds are what this version achieves (see the issue 4 closing note): the mounting
-# yaw from the gait within 0.6°, the declination using GPS within 3° (measured 1.97° and
-# 2.31°; the issue's target is 0.5°, met only with the simulator's ideal IMU: 0.52°). The
-# magnetic heading of the attitude estimator on the simulated consumer IMU is the limit.
+#
+# One seed is one draw of the GPS course noise, which alone moves the result by about 0.4°
+# (ideal IMU, 10 seeds: RMS 0.38°), so the test asserts the RMS error over seeds 1-8 as
+# well as each seed. Thresholds are what this version achieves with some margin (issue 4
+# closing note): declination RMS 0.56° / 0.65°, mounting yaw RMS 0.25°; the issue's 0.5° is
+# a target the RMS is near, not met on every seed.
 set -euo pipefail
 sim=$1 replay=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-run() {  # run <name> <sim args...>; prints "declination sigma source mount" of the last row
-  local name=$1; shift
-  "$sim" --scenario thesis-declination --seed 1 --out-dir "$work/$name" "$@" >/dev/null
+run() {  # run <name> <seed> <sim args...>; prints "declination sigma source mount" of the last row
+  local name=$1 seed=$2; shift 2
+  "$sim" --scenario thesis-declination --seed "$seed" --out-dir "$work/$name" "$@" >/dev/null
   "$replay" --imu-csv "$work/$name/imu.csv" --nmea "$work/$name/gps.nmea" --out "$work/$name/est.csv" 2>/dev/null
   head -1 "$work/$name/est.csv" | grep -q 'declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed' \
     || { echo "missing GPS columns"; exit 1; }
   tail -1 "$work/$name/est.csv" | awk -F, '{print $10, $11, $12, $13}'
 }
-check() {  # check <what> <value> <expected> <tolerance>
-  awk -v v="$2" -v e="$3" -v t="$4" -v w="$1" 'BEGIN { d = v - e; if (d < 0) d = -d;
-    printf "%s: %.3f (expected %.3f ± %.2f)\n", w, v, e, t; exit !(d <= t) }'
-}
 wmm_decl=7.6929  # WMM2025 at 59.33 N 18.07 E on 2026-06-01 (headingd-wmm)
+failed=0
+check_rms() {  # check_rms <what> <limit> <errors...>
+  local what=$1 limit=$2; shift 2
+  awk -v w="$what" -v l="$limit" 'BEGIN { for (i = 3; i < ARGC; ++i) s += ARGV[i] * ARGV[i];
+    r = sqrt(s / (ARGC - 3)); printf "%s: RMS %.3f over %d seeds (limit %.2f)\n", w, r, ARGC - 3, l; exit !(r <= l) }' \
+    x x "$@" || failed=1
+}
 
-read -r decl sigma source mount < <(run anomaly --decl-anomaly-deg 3)
-[[ $source == *gps* ]] || { echo "declination source '$source' does not include GPS"; exit 1; }
-check "anomaly run: declination" "$decl" "$(awk -v w=$wmm_decl 'BEGIN{print w + 3}')" 3.0
-check "anomaly run: mounting yaw" "$mount" 0 0.6
-
-read -r decl sigma source mount < <(run mount --mount-yaw-deg 3)
-[[ $source == *gps* ]] || { echo "declination source '$source' does not include GPS"; exit 1; }
-check "mount run: mounting yaw" "$mount" 3 0.6
-check "mount run: declination" "$decl" "$wmm_decl" 3.0
+anomaly_decl=() anomaly_mount=() mount_decl=() mount_mount=()
+for seed in 1 2 3 4 5 6 7 8; do
+  read -r decl sigma source mount < <(run "anomaly$seed" "$seed" --decl-anomaly-deg 3)
+  [[ $source == *gps* ]] || { echo "seed $seed: declination source '$source' does not include GPS"; exit 1; }
+  anomaly_decl+=("$(awk -v d="$decl" -v w=$wmm_decl 'BEGIN { print d - (w + 3) }')")
+  anomaly_mount+=("$mount")
+  read -r decl sigma source mount < <(run "mount$seed" "$seed" --mount-yaw-deg 3)
+  [[ $source == *gps* ]] || { echo "seed $seed: declination source '$source' does not include GPS"; exit 1; }
+  mount_decl+=("$(awk -v d="$decl" -v w=$wmm_decl 'BEGIN { print d - w }')")
+  mount_mount+=("$(awk -v m="$mount" 'BEGIN { print m - 3 }')")
+  echo "seed $seed: anomaly run decl error ${anomaly_decl[-1]}° mount ${anomaly_mount[-1]}°;" \
+       "mount run decl error ${mount_decl[-1]}° mount error ${mount_mount[-1]}°"
+done
+# Every seed: declination within 1.2° (worst measured 1.06°), mounting yaw within 0.6° (0.51°).
+for e in "${anomaly_decl[@]}" "${mount_decl[@]}"; do
+  awk -v e="$e" 'BEGIN { exit !(e <= 1.2 && e >= -1.2) }' || { echo "declination error $e beyond 1.2°"; failed=1; }
+done
+for e in "${anomaly_mount[@]}" "${mount_mount[@]}"; do
+  awk -v e="$e" 'BEGIN { exit !(e <= 0.6 && e >= -0.6) }' || { echo "mounting yaw error $e beyond 0.6°"; failed=1; }
+done
+check_rms "anomaly run: declination" 0.65 "${anomaly_decl[@]}"
+check_rms "mount run: declination" 0.75 "${mount_decl[@]}"
+check_rms "both runs: mounting yaw" 0.35 "${anomaly_mount[@]}" "${mount_mount[@]}"
+exit $failed

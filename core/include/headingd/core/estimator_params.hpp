@@ -119,7 +119,8 @@ struct EstimatorParams {
   double decl_min_direction_epochs = 10.0;
   // Uncertainty of the World Magnetic Model's declination at a place (its global error is
   // about 0.4°, local anomalies reach degrees) and of a receiver's magnetic variation (RMC;
-  // receivers often use an older or coarser model).
+  // receivers often use an older or coarser model). Both are models, so they share a local
+  // anomaly's error: together they count as one source with the smaller σ.
   double decl_wmm_sigma_rad = 0.035;       // 2 deg
   double decl_receiver_sigma_rad = 0.035;  // 2 deg
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "headingd/core/declination_estimator.hpp"
+#include "headingd/core/epoch_compass.hpp"
 #include "headingd/core/estimator.hpp"
 #include "headingd/core/gait_mount_yaw.hpp"
 #include "headingd/core/gps_observation.hpp"
@@ -45,6 +46,7 @@ class HeadingPipeline {
 
  private:
   bool courseGatesPass(const GpsObservation& gps, double sensor_heading) const;
+  std::size_t compassMinSamples(std::int64_t gps_t_ns) const;
   void updateDeclination();  // at GPS epochs: the sources change only then
   void updateOutput();       // every sample: cheap, no allocation
 
@@ -53,6 +55,7 @@ class HeadingPipeline {
   Estimator estimator_;
   GaitMountYawEstimator gait_;
   CourseMinusHeading course_minus_heading_;
+  EpochCompass epoch_compass_;  // the heading compared with the course (epoch_compass.hpp)
   HeadingOutput out_;
 
   std::optional<double> wmm_declination_rad_;
