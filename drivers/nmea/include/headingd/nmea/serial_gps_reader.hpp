@@ -1,0 +1,98 @@
+#pragma once
+// The serial GPS driver: reads a receiver's NMEA stream from a serial port on the caller's
+// Boost.Asio io_context and calls back once per completed fix epoch.
+//
+// Survives what a body-worn USB receiver does: not plugged in at start, unplugged (read
+// gives EOF or EIO, or the path vanishes or is re-pointed to another device), plugged back
+// in. Each time it closes the port and retries the path with a bounded back-off
+// (SerialGpsConfig); nothing here blocks the io_context or spins.
+//
+// Threading: everything runs on the io_context's thread(s) through one implicit strand, so
+// run the io_context on one thread. Handlers are called on that thread; counters() too must
+// be called there (post to it from elsewhere). Destroy the reader on that thread or when the
+// io_context is not running; pending operations then finish as no-ops.
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/serial_port.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "headingd/nmea/counters.hpp"
+#include "headingd/nmea/serial_epoch_assembler.hpp"
+#include "headingd/nmea/serial_gps_config.hpp"
+
+namespace headingd::nmea {
+
+enum class SerialGpsState {
+  kStopped,           // not started, or stopped
+  kOpen,              // reading
+  kWaitingForDevice,  // the path does not exist (not plugged in, or unplugged): retrying
+  kError,             // the path exists but cannot be used (not a tty, permissions): retrying
+};
+const char* serialGpsStateName(SerialGpsState s);  // "stopped", "open", "waiting_for_device", "error"
+
+struct SerialGpsCounters {
+  Counters parser;                 // bytes, lines, and every sentence outcome (counters.hpp)
+  EpochCounters epochs;            // fixes delivered, late sentences
+  std::uint64_t reads = 0;         // completed reads with data
+  std::uint64_t read_errors = 0;   // reads that failed with an error other than end of file
+  std::uint64_t disconnects = 0;   // the open device went away (EOF, read error, path changed)
+  std::uint64_t open_attempts = 0;
+  std::uint64_t reopen_attempts = 0;  // attempts after the first one
+  std::uint64_t reopens = 0;          // successful opens after the first one
+  SerialGpsState state = SerialGpsState::kStopped;
+  std::string last_error;  // empty until something went wrong; kept after recovery
+};
+
+class SerialGpsReader {
+ public:
+  SerialGpsReader(boost::asio::io_context& io, SerialGpsConfig config, FixHandler on_fix, LineHandler on_line = {});
+  ~SerialGpsReader();
+  SerialGpsReader(const SerialGpsReader&) = delete;
+  SerialGpsReader& operator=(const SerialGpsReader&) = delete;
+
+  // Opens the device (on the io_context, not in this call) and keeps it open until stop().
+  void start();
+  // Closes the device and cancels the retries; the epoch in progress is delivered.
+  void stop();
+
+  SerialGpsCounters counters() const;
+  const SerialGpsConfig& config() const { return config_; }
+
+ private:
+  void attemptOpen();
+  void scheduleOpen(std::chrono::nanoseconds delay);
+  void startRead();
+  void onRead(const boost::system::error_code& ec, std::size_t n);
+  void armIdleTimer();
+  void onIdleTimer();
+  void startPathCheck();
+  void onPathCheck();
+  void lose(const std::string& why);
+  void closePort();
+  void setError(SerialGpsState state, const std::string& message);
+
+  SerialGpsConfig config_;
+  EpochAssembler assembler_;
+  boost::asio::serial_port port_;
+  boost::asio::steady_timer reopen_timer_;
+  boost::asio::steady_timer idle_timer_;
+  boost::asio::steady_timer path_timer_;
+  std::array<std::uint8_t, 512> buffer_{};
+  std::chrono::nanoseconds backoff_;
+  std::int64_t last_receive_ns_ = 0;
+  bool idle_timer_armed_ = false;
+  bool ever_opened_ = false;
+  bool running_ = false;
+  std::uint64_t open_dev_ = 0;  // st_rdev of the open device, to notice a re-pointed path
+  SerialGpsCounters counters_;
+  // Handlers hold a weak_ptr to this: once the reader is gone, they do nothing.
+  std::shared_ptr<int> alive_ = std::make_shared<int>(0);
+};
+
+}  // namespace headingd::nmea
