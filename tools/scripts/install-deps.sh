@@ -17,6 +17,7 @@ packages=(
   libspdlog-dev        # logging
   libboost-dev         # Asio, Lockfree
   libgeographiclib-dev # World Magnetic Model, geodesy
+  libceres-dev         # maximum-likelihood calibration (automatic differentiation)
   gzip                 # the demo recording and BROAD trials are gzip'd
   liblcm-dev           # LCM messages (daemon)
   liblcm-bin           # lcm-gen, lcm-logger
