@@ -22,6 +22,7 @@ packages=(
   liblcm-dev           # LCM messages (daemon)
   liblcm-bin           # lcm-gen, lcm-logger
   liblcm-java          # lcm.jar for lcm-spy and the Java message classes
+  libjchart2d-java     # lcm-spy's charts (it fails to start without)
   libglib2.0-dev       # liblcm-dev's pkg-config file requires glib
   default-jdk-headless # javac/jar: the lcm-spy jar of headingd's messages
   libsystemd-dev       # sd_notify, watchdog (daemon)

@@ -1,0 +1,53 @@
+#pragma once
+// The daemon put together: the configuration → the World Magnetic Model, one ring per source
+// and sample kind, the sources, the LCM publisher, the estimator thread. The main thread
+// only waits for signals (main.cpp).
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "headingd/core/wmm.hpp"
+#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/estimator_loop.hpp"
+#include "headingd/daemon/lcm_publisher.hpp"
+#include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/sample_ring.hpp"
+#include "headingd/daemon/source.hpp"
+#include "headingd/daemon/systemd_notify.hpp"
+
+namespace headingd::daemon {
+
+class Daemon {
+ public:
+  // Reads every file the configuration names (WMM, recordings) and builds the sources, but
+  // starts nothing and opens no socket: what --check-config runs. Throws on any problem.
+  explicit Daemon(DaemonConfig config);
+  ~Daemon();
+
+  // Opens LCM, starts the estimator thread and the sources.
+  void start();
+  // Stops the sources and the estimator thread (within one estimator period plus the
+  // sources' own stop time). Idempotent.
+  void stop();
+  // True once the estimator loop ended on its own (a source asked to exit).
+  bool finished() const { return loop_ != nullptr && loop_->finished(); }
+  void requestCalibrationReload();
+
+  const DaemonConfig& config() const { return config_; }
+  std::size_t sourceCount() const { return sources_.size(); }
+  LoopSummary summary() const;
+
+ private:
+  DaemonConfig config_;
+  std::unique_ptr<core::WorldMagneticModel> wmm_;
+  std::vector<std::unique_ptr<SampleRing<ImuRingEntry>>> imu_rings_;
+  std::vector<std::unique_ptr<SampleRing<GpsRingEntry>>> gps_rings_;
+  std::vector<std::unique_ptr<Source>> sources_;
+  SystemdNotifier notifier_;
+  std::unique_ptr<LcmPublisher> publisher_;
+  std::unique_ptr<EstimatorLoop> loop_;
+  std::thread loop_thread_;
+  bool sources_started_ = false;
+};
+
+}  // namespace headingd::daemon

@@ -1,0 +1,132 @@
+#pragma once
+// The fixed-rate estimator thread. Each tick, at an absolute CLOCK_MONOTONIC deadline
+// (clock_nanosleep TIMER_ABSTIME, so late ticks do not push later ones back):
+//   drain every ring → order the samples by time → HeadingPipeline (IMU samples, GPS epochs
+//   after the IMU sample of the same or a later time, as headingd-replay does) → publish
+//   IMU and GPS as used, then HEADING and ATTITUDE once → STATUS every status period.
+// It measures its wake-up jitter, processing time, missed deadlines and the age of the
+// newest sample at publish, in fixed histograms (no allocation after start-up).
+//
+// Freshness: HEADING and ATTITUDE are published every tick; when no IMU sample has been
+// used for [daemon] imu_timeout_s their `validity` is STALE (and STATUS says "degraded"),
+// VALIDITY_NONE before the first estimate.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "headingd/attitude_t.hpp"
+#include "headingd/core/heading_pipeline.hpp"
+#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/latency_histogram.hpp"
+#include "headingd/daemon/lcm_messages.hpp"
+#include "headingd/daemon/lcm_publisher.hpp"
+#include "headingd/daemon/repeat_limiter.hpp"
+#include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/sample_ring.hpp"
+#include "headingd/daemon/source.hpp"
+#include "headingd/daemon/systemd_notify.hpp"
+#include "headingd/gps_t.hpp"
+#include "headingd/heading_t.hpp"
+#include "headingd/imu_t.hpp"
+#include "headingd/status_t.hpp"
+
+namespace headingd::daemon {
+
+// Whole-run figures, for the summary printed at exit and for measure.sh.
+struct LoopSummary {
+  std::uint64_t ticks = 0;
+  std::uint64_t deadline_misses = 0;
+  double jitter_p50_us = 0, jitter_p99_us = 0, jitter_max_us = 0;
+  double processing_p50_us = 0, processing_p99_us = 0, processing_max_us = 0;
+  double sample_age_p50_us = 0, sample_age_p99_us = 0, sample_age_max_us = 0;
+  std::uint64_t heading_published = 0, imu_published = 0, gps_published = 0, status_published = 0;
+  std::uint64_t publish_errors = 0;
+};
+
+class EstimatorLoop {
+ public:
+  // Everything is borrowed and must outlive the loop. `wmm` may be null.
+  EstimatorLoop(const DaemonConfig& config, const core::WorldMagneticModel* wmm,
+                std::vector<SampleRing<ImuRingEntry>*> imu_rings, std::vector<SampleRing<GpsRingEntry>*> gps_rings,
+                std::vector<Source*> sources, LcmPublisher& publisher, SystemdNotifier& notifier);
+
+  // Runs ticks on the calling thread until stop() or until every source that asked for it
+  // has finished and its data is processed (at_end = "exit").
+  void run();
+  void stop() { stop_requested_.store(true); }
+  bool finished() const { return finished_.load(); }
+  // SIGHUP: reload the calibration at the next tick (see reloadCalibration).
+  void requestCalibrationReload() { reload_requested_.store(true); }
+
+  LoopSummary summary() const;
+
+ private:
+  void tick(std::int64_t wake_ns);
+  void processImu(const ImuRingEntry& e, std::int64_t utime_us);
+  void processGps(const GpsRingEntry& e, std::int64_t utime_us);
+  void publishEstimate(std::int64_t now_ns, std::int64_t utime_us);
+  void publishStatus(std::int64_t now_ns, std::int64_t utime_us);
+  void reloadCalibration();
+  bool sourcesWantExit() const;
+  // "ok", "degraded", "starting" and why.
+  const char* healthState(std::int64_t now_ns, std::string* reason) const;
+  Validity validity(std::int64_t now_ns) const;
+
+  const DaemonConfig& config_;
+  core::HeadingPipeline pipeline_;
+  std::vector<SampleRing<ImuRingEntry>*> imu_rings_;
+  std::vector<SampleRing<GpsRingEntry>*> gps_rings_;
+  std::vector<Source*> sources_;
+  std::vector<std::string> source_names_;  // by source_index, for the IMU/GPS messages
+  LcmPublisher& publisher_;
+  SystemdNotifier& notifier_;
+
+  std::int64_t period_ns_;
+  std::int64_t imu_timeout_ns_;
+  std::int64_t status_period_ns_;
+  std::atomic<bool> stop_requested_{false};
+  std::atomic<bool> finished_{false};
+  std::atomic<bool> reload_requested_{false};
+
+  // Per-tick buffers, reserved once.
+  std::vector<ImuRingEntry> imu_batch_;
+  std::vector<GpsRingEntry> gps_pending_;  // held until an IMU sample at or after their time
+
+  // Freshness.
+  std::int64_t start_ns_ = 0;
+  bool any_imu_used_ = false;
+  std::int64_t last_used_arrival_ns_ = 0;   // arrival of the newest IMU sample the gate used
+  std::int64_t last_used_t_ns_ = 0;         // its sensor time
+  std::int64_t last_any_imu_arrival_ns_ = 0;  // of any IMU sample, used or rejected
+  bool consumed_this_tick_ = false;
+
+  // Timing.
+  std::uint64_t ticks_ = 0;
+  std::uint64_t deadline_misses_ = 0;
+  LatencyHistogram jitter_total_, processing_total_, age_total_;
+  LatencyHistogram jitter_window_, processing_window_, age_window_;
+  std::int64_t last_status_ns_ = 0;
+  std::uint64_t heading_published_ = 0, imu_published_ = 0, gps_published_ = 0, status_published_ = 0;
+  std::uint64_t heading_at_last_status_ = 0, imu_at_last_status_ = 0, gps_at_last_status_ = 0;
+  std::uint64_t gps_epochs_processed_ = 0, gps_epochs_forced_ = 0;
+  std::uint64_t imu_rejected_ = 0;
+  std::vector<std::uint64_t> ring_drops_seen_;
+
+  // Logging limits for per-sample problems.
+  RepeatLimiter rejected_log_;
+  RepeatLimiter drop_log_;
+  RepeatLimiter miss_log_;
+
+  // Reused messages.
+  headingd::heading_t heading_msg_{};
+  headingd::attitude_t attitude_msg_{};
+  headingd::imu_t imu_msg_{};
+  headingd::gps_t gps_msg_{};
+  headingd::status_t status_msg_{};
+  std::vector<SourceReport> source_reports_;
+  std::string status_text_;
+};
+
+}  // namespace headingd::daemon

@@ -1,0 +1,66 @@
+#pragma once
+// A file source: an IMU CSV (BROAD format) and optionally an NMEA capture on the same time
+// axis (drivers/replay), played into the rings at real-time pace times `speed`. The files
+// are read completely at construction (errors stop start-up); playing allocates nothing.
+//
+// Samples keep the file's time column as their sensor time (so the estimator sees exactly
+// what headingd-replay sees); their arrival time is the monotonic time they were pushed.
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/sample_ring.hpp"
+#include "headingd/daemon/source.hpp"
+#include "headingd/nmea/counters.hpp"
+
+namespace headingd::daemon {
+
+class ImuCsvSource final : public Source {
+ public:
+  // `gps_ring` may be null when the configuration has no NMEA file. Throws
+  // replay::CsvError (or core::ConfigError) when a file cannot be read.
+  ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, std::uint16_t source_index,
+               SampleRing<ImuRingEntry>* imu_ring, SampleRing<GpsRingEntry>* gps_ring);
+  ~ImuCsvSource() override;
+
+  const std::string& name() const override { return name_; }
+  const char* kind() const override { return "imu_csv"; }
+  void start() override;
+  void stop() override;
+  void report(SourceReport& out) const override;
+  bool wantsExit() const override { return wants_exit_.load(); }
+
+  std::size_t imuSampleCount() const { return imu_.size(); }
+  std::size_t gpsEpochCount() const { return gps_.size(); }
+
+ private:
+  void run();
+  // Sleeps until `mono_ns` or a stop request; false when asked to stop.
+  bool sleepUntil(std::int64_t mono_ns);
+
+  std::string name_;
+  ImuCsvSourceConfig config_;
+  std::uint16_t source_index_;
+  SampleRing<ImuRingEntry>* imu_ring_;
+  SampleRing<GpsRingEntry>* gps_ring_;
+  std::vector<core::ImuSample> imu_;
+  std::vector<core::GpsObservation> gps_;
+  nmea::Counters nmea_counters_;
+  std::int64_t loop_length_ns_ = 0;  // added to the times of each further loop
+
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_requested_ = false;  // under mutex_
+  std::atomic<SourceState> state_{SourceState::kStarting};
+  std::atomic<bool> wants_exit_{false};
+  std::atomic<std::uint64_t> imu_pushed_{0}, imu_dropped_{0}, gps_pushed_{0}, gps_dropped_{0}, loops_{0};
+};
+
+}  // namespace headingd::daemon

@@ -1,0 +1,19 @@
+#pragma once
+// spdlog set-up: stderr always (journald picks it up under systemd), plus an optional file
+// that SIGHUP reopens (for logrotate). Under systemd (JOURNAL_STREAM set) lines carry no
+// timestamp of their own: the journal adds one.
+#include <memory>
+#include <spdlog/spdlog.h>
+#include <string>
+
+#include "headingd/daemon/config.hpp"
+
+namespace headingd::daemon {
+
+// Makes the default logger; level "" keeps the configured one. Throws spdlog::spdlog_ex
+// when the log file cannot be opened.
+void setUpLogging(const LogConfig& config, const std::string& level_override);
+// Closes and reopens the log file (if one is configured). Safe while other threads log.
+void reopenLogFile();
+
+}  // namespace headingd::daemon

@@ -1,0 +1,123 @@
+#include "headingd/daemon/can_imu_source.hpp"
+
+#include <boost/asio/post.hpp>
+#include <future>
+
+#include "headingd/daemon/clocks.hpp"
+
+namespace headingd::daemon {
+namespace {
+// Flush period: an epoch whose last frame never comes is released (or counted incomplete)
+// at most this late; also how often the counters are copied for STATUS.
+constexpr auto kTimerPeriod = std::chrono::milliseconds(10);
+}  // namespace
+
+CanImuSource::CanImuSource(std::string name, const can::CanConfig& config, std::uint16_t source_index,
+                           SampleRing<ImuRingEntry>* imu_ring)
+    : name_(std::move(name)),
+      source_index_(source_index),
+      ring_(imu_ring),
+      config_(config),
+      dbc_(can::loadDbcFile(config.dbc_path)),
+      timer_(io_) {
+  codec_ = std::make_unique<can::ImuFrameCodec>(config_, dbc_);
+  assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(config_));
+  receiver_ = std::make_unique<can::SocketCanReceiver>(io_, can::receiverSettingsFrom(config_, *codec_),
+                                                      [this](const can::CanFrame& f) { onFrame(f); });
+}
+
+CanImuSource::~CanImuSource() { stop(); }
+
+void CanImuSource::pushSamples(const can::AssembledSamples& samples) {
+  if (samples.count == 0) return;
+  // Kernel timestamps are CLOCK_REALTIME; the estimator's axis is CLOCK_MONOTONIC. The
+  // offset is read now, microseconds after the frame, so a wall-clock step moves at most
+  // the samples released across it.
+  const std::int64_t realtime_minus_monotonic = realtimeNs() - monotonicNs();
+  for (int i = 0; i < samples.count; ++i) {
+    ImuRingEntry e;
+    e.sample = samples.samples[static_cast<std::size_t>(i)];
+    if (e.sample.t_ns != 0) {
+      e.sample.t_ns -= realtime_minus_monotonic;
+    } else {
+      e.sample.t_ns = monotonicNs();  // no kernel timestamp: the best we know
+    }
+    e.arrival_mono_ns = e.sample.t_ns;
+    e.source_index = source_index_;
+    (ring_->push(e) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+void CanImuSource::onFrame(const can::CanFrame& frame) { pushSamples(assembler_->push(frame)); }
+
+void CanImuSource::onTimer() {
+  pushSamples(assembler_->flush(realtimeNs()));
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    snapshot_ = assembler_->counters();
+  }
+  timer_.expires_after(kTimerPeriod);
+  timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) onTimer();
+  });
+}
+
+void CanImuSource::start() {
+  work_.emplace(io_.get_executor());
+  boost::asio::post(io_, [this] {
+    receiver_->start();
+    onTimer();
+  });
+  thread_ = std::thread([this] { io_.run(); });
+}
+
+void CanImuSource::stop() {
+  if (!thread_.joinable()) return;
+  std::promise<void> stopped;
+  boost::asio::post(io_, [this, &stopped] {
+    receiver_->stop();
+    timer_.cancel();
+    stopped.set_value();
+  });
+  stopped.get_future().wait_for(std::chrono::milliseconds(500));
+  work_.reset();
+  io_.stop();
+  thread_.join();
+}
+
+void CanImuSource::report(SourceReport& out) const {
+  const can::ReceiverStatus r = receiver_->status();
+  switch (r.state) {
+    case can::LinkState::up: out.state = SourceState::kRunning; break;
+    case can::LinkState::down:
+    case can::LinkState::waiting: out.state = SourceState::kWaiting; break;
+  }
+  if (out.last_error != r.last_error) out.last_error = r.last_error;
+  std::size_t i = 0;
+  out.set(i++, "samples_pushed", pushed_.load(std::memory_order_relaxed));
+  out.set(i++, "ring_full_drops", dropped_.load(std::memory_order_relaxed));
+  out.set(i++, "frames", r.frames);
+  out.set(i++, "kernel_drops", r.kernel_drops);
+  out.set(i++, "read_errors", r.read_errors);
+  out.set(i++, "open_failures", r.open_failures);
+  out.set(i++, "times_up", r.times_up);
+  out.set(i++, "times_lost", r.times_lost);
+  out.set(i++, "bus_error_frames", r.bus.error_frames);
+  out.set(i++, "bus_off", r.bus.bus_off);
+  out.set(i++, "error_passive", r.bus.error_passive);
+  out.set(i++, "controller_rx_overflow", r.bus.controller_rx_overflow);
+  out.set(i++, "protocol_violations", r.bus.protocol_violations);
+  std::lock_guard lock(snapshot_mutex_);
+  const can::AssemblerCounters& a = snapshot_;
+  out.set(i++, "samples", a.samples);
+  out.set(i++, "samples_with_mag", a.samples_with_mag);
+  out.set(i++, "incomplete_epochs", a.incomplete_epochs);
+  out.set(i++, "sequence_gaps", a.sequence_gaps);
+  out.set(i++, "missing_epochs", a.missing_epochs);
+  out.set(i++, "duplicate_frames", a.duplicate_frames);
+  out.set(i++, "late_frames", a.late_frames);
+  out.set(i++, "unknown_id_frames", a.unknown_id_frames);
+  out.set(i++, "wrong_length_frames", a.wrong_length_frames);
+}
+
+}  // namespace headingd::daemon

@@ -1,0 +1,213 @@
+#include "headingd/daemon/config.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "toml_table_reader.hpp"
+
+namespace headingd::daemon {
+namespace {
+
+constexpr const char* kTables[] = {"daemon", "log", "realtime", "rings", "lcm", "estimator", "imu_csv", "can", "gps"};
+
+// The [estimator] table alone, on the same lines as in the file, for core's parser
+// (which accepts only that table): its header and key lines stay, all others go blank.
+std::string estimatorTableText(std::string_view text, const toml::table& estimator, const std::string& source) {
+  std::vector<std::string_view> lines;
+  for (std::size_t start = 0; start <= text.size();) {
+    const std::size_t nl = text.find('\n', start);
+    const std::size_t end = nl == std::string_view::npos ? text.size() : nl;
+    lines.push_back(text.substr(start, end - start));
+    if (nl == std::string_view::npos) break;
+    start = nl + 1;
+  }
+  std::set<std::size_t> keep;  // 1-based line numbers
+  std::size_t first_key_line = 0;
+  for (auto&& [key, node] : estimator) {
+    const std::size_t begin = node.source().begin.line, end = node.source().end.line;
+    if (first_key_line == 0 || begin < first_key_line) first_key_line = begin;
+    for (std::size_t l = begin; l <= end; ++l) keep.insert(l);
+  }
+  const std::size_t header_line = estimator.source().begin.line;
+  if (first_key_line != 0 && header_line >= first_key_line) {
+    throw core::ConfigError(source + ":" + std::to_string(first_key_line) +
+                            ": [estimator]: write the estimator keys below an [estimator] header, "
+                            "not as dotted keys");
+  }
+  std::string out;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::size_t line = i + 1;
+    if (line == header_line) {
+      out += "[estimator]";
+    } else if (keep.count(line) != 0) {
+      out += lines[i];
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+// LCM channel names: non-empty, printable, no spaces (they are typed on command lines).
+void checkChannel(TomlTableReader& r, std::string_view key, const std::string& channel) {
+  if (channel.empty() || channel.size() > 63) r.fail(key, "expected a channel name of 1 to 63 characters");
+  for (const char c : channel) {
+    if (c <= ' ' || c > '~') r.fail(key, "'" + channel + "': a channel name has no spaces or control characters");
+  }
+}
+
+}  // namespace
+
+const char* atEndName(AtEnd a) {
+  switch (a) {
+    case AtEnd::kStay: return "stay";
+    case AtEnd::kExit: return "exit";
+    case AtEnd::kLoop: return "loop";
+  }
+  return "?";
+}
+
+DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source, const std::string& base_dir) {
+  toml::table doc;
+  try {
+    doc = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    throw core::ConfigError(source + ":" + std::to_string(e.source().begin.line) +
+                            ": TOML syntax error: " + std::string(e.description()));
+  }
+
+  std::string expected;
+  for (const char* t : kTables) expected += (expected.empty() ? "[" : ", [") + std::string(t) + "]";
+  for (auto&& [key, node] : doc) {
+    bool known = false;
+    for (const char* t : kTables) known = known || key.str() == t;
+    if (!known) {
+      throw core::ConfigError(sourceLine(source, node) + ": unknown table or key '" + std::string(key.str()) +
+                              "' (expected " + expected + ")");
+    }
+    if (!node.is_table()) {
+      throw core::ConfigError(sourceLine(source, node) + ": '" + std::string(key.str()) +
+                              "' must be a table ([" + std::string(key.str()) + "] on a line of its own)");
+    }
+  }
+
+  DaemonConfig c;
+  c.source = source;
+
+  TomlTableReader daemon(doc["daemon"].as_table(), source, "daemon");
+  c.rate_hz = daemon.number("rate_hz", c.rate_hz, 1.0, 2000.0, "Hz");
+  c.imu_timeout_s = daemon.number("imu_timeout_s", c.imu_timeout_s, 0.01, 60.0, "s");
+  c.status_period_s = daemon.number("status_period_s", c.status_period_s, 0.1, 60.0, "s");
+  c.console_status = daemon.boolean("console_status", c.console_status);
+  c.wmm_path = daemon.path("wmm", c.wmm_path, base_dir, true);
+  daemon.rejectUnknownKeys();
+
+  TomlTableReader log(doc["log"].as_table(), source, "log");
+  c.log.level = log.choice("level", c.log.level, {"trace", "debug", "info", "warn", "error", "critical", "off"});
+  c.log.file = log.path("file", c.log.file, base_dir, false);
+  c.log.repeat_burst = static_cast<int>(log.integer("repeat_burst", c.log.repeat_burst, 1, 1000));
+  c.log.repeat_interval_s = log.number("repeat_interval_s", c.log.repeat_interval_s, 0.1, 3600.0, "s");
+  log.rejectUnknownKeys();
+
+  TomlTableReader realtime(doc["realtime"].as_table(), source, "realtime");
+  c.realtime.sched_fifo_priority = static_cast<int>(realtime.integer("sched_fifo_priority", 0, 0, 99));
+  for (const std::int64_t cpu : realtime.integerArray("cpu_affinity", 0, 1023)) {
+    c.realtime.cpu_affinity.push_back(static_cast<int>(cpu));
+  }
+  c.realtime.lock_memory = realtime.boolean("lock_memory", c.realtime.lock_memory);
+  realtime.rejectUnknownKeys();
+
+  TomlTableReader rings(doc["rings"].as_table(), source, "rings");
+  c.imu_ring_capacity = static_cast<std::size_t>(rings.integer("imu_capacity", 4096, 16, 1 << 20));
+  c.gps_ring_capacity = static_cast<std::size_t>(rings.integer("gps_capacity", 64, 4, 1 << 16));
+  rings.rejectUnknownKeys();
+
+  TomlTableReader lcm(doc["lcm"].as_table(), source, "lcm");
+  c.lcm.url = lcm.string("url", c.lcm.url);
+  {
+    const std::string& url = c.lcm.url;
+    const bool known_scheme = url.rfind("udpm://", 0) == 0 || url.rfind("file://", 0) == 0 ||
+                              url.rfind("memq://", 0) == 0 || url.rfind("tcpq://", 0) == 0;
+    if (!known_scheme) lcm.fail("url", "'" + url + "': expected an LCM URL (udpm://, file://, memq://, tcpq://)");
+  }
+  std::string* channels[] = {&c.lcm.heading_channel, &c.lcm.attitude_channel, &c.lcm.imu_channel,
+                             &c.lcm.gps_channel, &c.lcm.status_channel};
+  const char* channel_keys[] = {"heading_channel", "attitude_channel", "imu_channel", "gps_channel",
+                                "status_channel"};
+  for (int i = 0; i < 5; ++i) {
+    *channels[i] = lcm.string(channel_keys[i], *channels[i]);
+    checkChannel(lcm, channel_keys[i], *channels[i]);
+    for (int j = 0; j < i; ++j) {
+      if (*channels[j] == *channels[i]) {
+        lcm.fail(channel_keys[i], "'" + *channels[i] + "' is already the " + channel_keys[j] + "; expected a channel of its own");
+      }
+    }
+  }
+  c.lcm.publish_imu = lcm.boolean("publish_imu", c.lcm.publish_imu);
+  c.lcm.publish_gps = lcm.boolean("publish_gps", c.lcm.publish_gps);
+  lcm.rejectUnknownKeys();
+
+  if (const toml::table* estimator = doc["estimator"].as_table()) {
+    c.estimator = core::parseEstimatorParams(estimatorTableText(text, *estimator, source), source);
+  }
+
+  TomlTableReader csv(doc["imu_csv"].as_table(), source, "imu_csv");
+  c.imu_csv.enabled = csv.boolean("enabled", c.imu_csv.enabled);
+  c.imu_csv.imu_csv_path = csv.path("path", "", base_dir, c.imu_csv.enabled);
+  if (c.imu_csv.enabled && c.imu_csv.imu_csv_path.empty()) {
+    csv.fail("path", "expected the IMU CSV file to play (the source is enabled)");
+  }
+  c.imu_csv.nmea_path = csv.path("nmea", "", base_dir, c.imu_csv.enabled);
+  c.imu_csv.nmea_first_epoch_t_s = csv.number("nmea_first_epoch_t_s", 0.0, -1e9, 1e9, "s");
+  c.imu_csv.speed = csv.number("speed", c.imu_csv.speed, 0.01, 1000.0, "x real time");
+  c.imu_csv.start_delay_s = csv.number("start_delay_s", c.imu_csv.start_delay_s, 0.0, 3600.0, "s");
+  const std::string at_end = csv.choice("at_end", "stay", {"stay", "exit", "loop"});
+  c.imu_csv.at_end = at_end == "exit" ? AtEnd::kExit : at_end == "loop" ? AtEnd::kLoop : AtEnd::kStay;
+  c.imu_csv.monotonic_time = csv.choice("time_axis", "file", {"file", "monotonic"}) == "monotonic";
+  if (c.imu_csv.monotonic_time && c.imu_csv.speed != 1.0) {
+    csv.fail("time_axis", "\"monotonic\" needs speed = 1.0 (at another speed the file's time steps would not be the clock's)");
+  }
+  csv.rejectUnknownKeys();
+
+  c.has_can_table = doc["can"].is_table();
+  c.has_gps_table = doc["gps"].is_table();
+  bool live_source = false;
+#ifdef HEADINGD_WITH_CAN
+  if (c.has_can_table) {
+    c.can = can::parseCanTable(*doc["can"].as_table(), source, base_dir);
+    live_source = true;
+  }
+#else
+  if (c.has_can_table) throw core::ConfigError(sourceLine(source, *doc["can"].node()) + ": [can]: this headingd was built without the CAN driver");
+#endif
+#ifdef HEADINGD_WITH_GPS_SERIAL
+  if (c.has_gps_table) {
+    c.gps = nmea::parseGpsConfig(doc, source);
+    live_source = live_source || c.gps->enabled;
+  }
+#else
+  if (c.has_gps_table) throw core::ConfigError(sourceLine(source, *doc["gps"].node()) + ": [gps]: this headingd was built without the serial GPS driver");
+#endif
+  // A file plays on its own time axis, live sources on the monotonic clock: mixed, the
+  // estimator would see samples hours apart.
+  if (c.imu_csv.enabled && live_source && !c.imu_csv.monotonic_time) {
+    csv.fail("enabled", "a file source on its own time axis cannot run together with the live sources "
+                        "[can] / [gps]; set time_axis = \"monotonic\" (speed 1) or disable one of them");
+  }
+  return c;
+}
+
+DaemonConfig loadDaemonConfig(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw core::ConfigError(path + ": cannot open the configuration file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  const std::string base_dir = ec ? std::string() : absolute.parent_path().string();
+  return parseDaemonConfig(text.str(), path, base_dir);
+}
+
+}  // namespace headingd::daemon

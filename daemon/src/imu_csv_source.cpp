@@ -1,0 +1,118 @@
+#include "headingd/daemon/imu_csv_source.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "headingd/daemon/clocks.hpp"
+#include "headingd/replay/imu_csv.hpp"
+#include "headingd/replay/nmea_epochs.hpp"
+
+namespace headingd::daemon {
+
+ImuCsvSource::ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, std::uint16_t source_index,
+                           SampleRing<ImuRingEntry>* imu_ring, SampleRing<GpsRingEntry>* gps_ring)
+    : name_(std::move(name)), config_(config), source_index_(source_index), imu_ring_(imu_ring), gps_ring_(gps_ring) {
+  imu_ = replay::readImuCsv(config_.imu_csv_path);
+  if (!config_.nmea_path.empty()) {
+    replay::NmeaEpochs epochs = replay::readNmeaEpochs(config_.nmea_path, config_.nmea_first_epoch_t_s);
+    gps_ = std::move(epochs.epochs);
+    nmea_counters_ = epochs.counters;
+  }
+  if (imu_.size() >= 2) {
+    // One loop later = the file's length plus its median sample period, so the loop seam
+    // looks like one ordinary sample step to the estimator's gate.
+    std::vector<std::int64_t> steps;
+    for (std::size_t i = 1; i < std::min<std::size_t>(imu_.size(), 1001); ++i) steps.push_back(imu_[i].t_ns - imu_[i - 1].t_ns);
+    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+    loop_length_ns_ = imu_.back().t_ns - imu_.front().t_ns + std::max<std::int64_t>(steps[steps.size() / 2], 1);
+  }
+}
+
+ImuCsvSource::~ImuCsvSource() { stop(); }
+
+void ImuCsvSource::start() { thread_ = std::thread([this] { run(); }); }
+
+void ImuCsvSource::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_requested_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+bool ImuCsvSource::sleepUntil(std::int64_t mono_ns) {
+  // std::chrono::steady_clock is CLOCK_MONOTONIC on Linux, the clock of mono_ns.
+  const std::chrono::steady_clock::time_point until{std::chrono::nanoseconds(mono_ns)};
+  std::unique_lock lock(mutex_);
+  return !wake_.wait_until(lock, until, [this] { return stop_requested_; });
+}
+
+void ImuCsvSource::run() {
+  if (imu_.empty()) {
+    state_ = SourceState::kFinished;
+    wants_exit_ = config_.at_end == AtEnd::kExit;
+    return;
+  }
+  const std::int64_t file_t0 = imu_.front().t_ns;
+  const std::int64_t start_mono = monotonicNs() + static_cast<std::int64_t>(config_.start_delay_s * 1e9);
+  // Play time of a file time `t` (ns) in loop `loop`.
+  const double speed = config_.speed;
+  auto playAt = [&](std::int64_t t_ns) {
+    return start_mono + static_cast<std::int64_t>(std::llround(static_cast<double>(t_ns - file_t0) / speed));
+  };
+  state_ = SourceState::kRunning;
+  // time_axis = "monotonic": file time t is sent as the monotonic time it is played at.
+  const std::int64_t axis_offset = config_.monotonic_time ? start_mono - file_t0 : 0;
+  for (std::int64_t offset = axis_offset;; offset += loop_length_ns_) {
+    std::size_t next_imu = 0, next_gps = 0;
+    while (next_imu < imu_.size() || next_gps < gps_.size()) {
+      // GPS epochs go after the IMU sample of the same time, as in headingd-replay.
+      const bool imu_next = next_gps >= gps_.size() ||
+                            (next_imu < imu_.size() && imu_[next_imu].t_ns <= gps_[next_gps].t_ns);
+      const std::int64_t t = imu_next ? imu_[next_imu].t_ns : gps_[next_gps].t_ns;
+      const std::int64_t due = playAt(t + offset - axis_offset);
+      if (due > monotonicNs() && !sleepUntil(due)) return;
+      const std::int64_t now = monotonicNs();
+      if (imu_next) {
+        ImuRingEntry e;
+        e.sample = imu_[next_imu++];
+        e.sample.t_ns += offset;
+        e.arrival_mono_ns = now;
+        e.source_index = source_index_;
+        (imu_ring_->push(e) ? imu_pushed_ : imu_dropped_).fetch_add(1, std::memory_order_relaxed);
+      } else {
+        GpsRingEntry e;
+        e.observation = gps_[next_gps++];
+        e.observation.t_ns += offset;
+        e.arrival_mono_ns = now;
+        e.source_index = source_index_;
+        const bool pushed = gps_ring_ != nullptr && gps_ring_->push(e);
+        (pushed ? gps_pushed_ : gps_dropped_).fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    loops_.fetch_add(1, std::memory_order_relaxed);
+    if (config_.at_end != AtEnd::kLoop) break;
+  }
+  state_ = SourceState::kFinished;
+  wants_exit_ = config_.at_end == AtEnd::kExit;
+}
+
+void ImuCsvSource::report(SourceReport& out) const {
+  out.state = state_.load();
+  out.last_error.clear();
+  std::size_t i = 0;
+  out.set(i++, "imu_samples_in_file", imu_.size());
+  out.set(i++, "imu_pushed", imu_pushed_.load(std::memory_order_relaxed));
+  out.set(i++, "imu_ring_full_drops", imu_dropped_.load(std::memory_order_relaxed));
+  out.set(i++, "gps_epochs_in_file", gps_.size());
+  out.set(i++, "gps_pushed", gps_pushed_.load(std::memory_order_relaxed));
+  out.set(i++, "gps_ring_full_drops", gps_dropped_.load(std::memory_order_relaxed));
+  out.set(i++, "loops_played", loops_.load(std::memory_order_relaxed));
+  if (!config_.nmea_path.empty()) {
+    nmea::forEachCounter(nmea_counters_, [&](const char* name, std::uint64_t v) { out.set(i++, "nmea_", name, v); });
+  }
+}
+
+}  // namespace headingd::daemon

@@ -1,0 +1,184 @@
+// Configuration errors name file:line, the key and what was expected; shipped files parse.
+#include <gtest/gtest.h>
+
+#include "daemon_test_support.hpp"
+#include "headingd/daemon/config.hpp"
+
+namespace headingd::daemon {
+namespace {
+
+using test::TempDir;
+
+// The message of the ConfigError that loading `text` throws ("" if none).
+std::string errorOf(const TempDir& dir, const std::string& text) {
+  const std::string path = dir.write("bad.toml", text);
+  try {
+    loadDaemonConfig(path);
+  } catch (const core::ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+class DaemonConfigErrors : public ::testing::Test {
+ protected:
+  TempDir dir;
+  std::string at(int line) const { return dir.file("bad.toml") + ":" + std::to_string(line) + ": "; }
+};
+
+TEST_F(DaemonConfigErrors, UnknownKeyNamesLineTableAndTheKnownKeys) {
+  const std::string e = errorOf(dir, "[daemon]\nrate_hz = 50\nrate = 10\n");
+  EXPECT_NE(e.find(at(3) + "[daemon] rate: unknown key"), std::string::npos) << e;
+  EXPECT_NE(e.find("rate_hz"), std::string::npos) << e;
+}
+
+TEST_F(DaemonConfigErrors, UnknownTable) {
+  const std::string e = errorOf(dir, "[daemon]\n\n[deamon]\nrate_hz = 5\n");
+  EXPECT_NE(e.find(at(3) + "unknown table or key 'deamon'"), std::string::npos) << e;
+}
+
+TEST_F(DaemonConfigErrors, TopLevelKeyIsNotATable) {
+  const std::string e = errorOf(dir, "lcm = 3\n");
+  EXPECT_NE(e.find(at(1) + "'lcm' must be a table"), std::string::npos) << e;
+}
+
+TEST_F(DaemonConfigErrors, WrongType) {
+  EXPECT_NE(errorOf(dir, "[daemon]\nrate_hz = \"fast\"\n").find(at(2) + "[daemon] rate_hz: expected a number in Hz"),
+            std::string::npos);
+  EXPECT_NE(errorOf(dir, "[rings]\nimu_capacity = 10.5\n").find(at(2) + "[rings] imu_capacity: expected an integer"),
+            std::string::npos);
+  EXPECT_NE(errorOf(dir, "[lcm]\npublish_imu = 1\n").find(at(2) + "[lcm] publish_imu: expected true or false"),
+            std::string::npos);
+  EXPECT_NE(errorOf(dir, "[realtime]\ncpu_affinity = 1\n").find(at(2) + "[realtime] cpu_affinity: expected an array"),
+            std::string::npos);
+}
+
+TEST_F(DaemonConfigErrors, OutOfRange) {
+  const std::string e = errorOf(dir, "[daemon]\nrate_hz = 5000\n");
+  EXPECT_NE(e.find(at(2) + "[daemon] rate_hz: 5000 is out of range, expected 1 .. 2000 Hz"), std::string::npos) << e;
+  const std::string p = errorOf(dir, "\n[realtime]\nsched_fifo_priority = 100\n");
+  EXPECT_NE(p.find(at(3) + "[realtime] sched_fifo_priority: 100 is out of range"), std::string::npos) << p;
+}
+
+TEST_F(DaemonConfigErrors, NotOneOfTheChoices) {
+  const std::string e = errorOf(dir, "[imu_csv]\nat_end = \"bounce\"\n");
+  EXPECT_NE(e.find(at(2) + "[imu_csv] at_end: 'bounce' is not one of \"stay\", \"exit\", \"loop\""), std::string::npos)
+      << e;
+}
+
+TEST_F(DaemonConfigErrors, SyntaxError) {
+  const std::string e = errorOf(dir, "[daemon]\nrate_hz = = 3\n");
+  EXPECT_NE(e.find(at(2) + "TOML syntax error"), std::string::npos) << e;
+}
+
+TEST_F(DaemonConfigErrors, EstimatorTableKeepsItsLineNumbers) {
+  const std::string head = "# comment\n[daemon]\nrate_hz = 100\n\n[estimator]\ngyro_noise_rad_s = 0.05\n";
+  const std::string unknown = errorOf(dir, head + "gyro_noize = 1\n");
+  EXPECT_NE(unknown.find(at(7) + "[estimator] gyro_noize: unknown key"), std::string::npos) << unknown;
+  const std::string range = errorOf(dir, head + "\n\ngravity_m_s2 = 3\n");
+  EXPECT_NE(range.find(at(9) + "[estimator] gravity_m_s2: 3 is out of range"), std::string::npos) << range;
+  const std::string type = errorOf(dir, head + "gravity_m_s2 = \"g\"\n[lcm]\n");
+  EXPECT_NE(type.find(at(7) + "[estimator] gravity_m_s2: expected a number"), std::string::npos) << type;
+  // Cross-checks between two keys name the later one's line.
+  const std::string pair = errorOf(dir, head + "redefine_heading_enter = 0.9\nredefine_heading_leave = 0.8\n");
+  EXPECT_NE(pair.find(at(8) + "[estimator] redefine_heading_enter must be below"), std::string::npos) << pair;
+}
+
+TEST_F(DaemonConfigErrors, MissingFileNamesThePath) {
+  const std::string e = errorOf(dir, "[imu_csv]\nenabled = true\npath = \"nope.csv\"\n");
+  EXPECT_NE(e.find(at(3) + "[imu_csv] path: cannot open '" + dir.file("nope.csv") + "'"), std::string::npos) << e;
+  const std::string none = errorOf(dir, "[imu_csv]\nenabled = true\n");
+  EXPECT_NE(none.find("[imu_csv] path: expected the IMU CSV file"), std::string::npos) << none;
+  const std::string wmm = errorOf(dir, "[daemon]\nwmm = \"/nonexistent/WMM.COF\"\n");
+  EXPECT_NE(wmm.find(at(2) + "[daemon] wmm: cannot open"), std::string::npos) << wmm;
+}
+
+TEST_F(DaemonConfigErrors, ChannelsMustDifferAndBeNames) {
+  const std::string same = errorOf(dir, "[lcm]\nimu_channel = \"HEADING\"\n");
+  EXPECT_NE(same.find(at(2) + "[lcm] imu_channel: 'HEADING' is already the heading_channel"), std::string::npos) << same;
+  const std::string space = errorOf(dir, "[lcm]\nstatus_channel = \"MY STATUS\"\n");
+  EXPECT_NE(space.find(at(2) + "[lcm] status_channel"), std::string::npos) << space;
+  const std::string url = errorOf(dir, "[lcm]\nurl = \"http://x\"\n");
+  EXPECT_NE(url.find(at(2) + "[lcm] url: 'http://x': expected an LCM URL"), std::string::npos) << url;
+}
+
+TEST_F(DaemonConfigErrors, MonotonicTimeNeedsRealTimeSpeed) {
+  const std::string e = errorOf(dir, "[imu_csv]\nspeed = 2.0\ntime_axis = \"monotonic\"\n");
+  EXPECT_NE(e.find(at(3) + "[imu_csv] time_axis: \"monotonic\" needs speed = 1.0"), std::string::npos) << e;
+}
+
+TEST_F(DaemonConfigErrors, FileTimeCannotMixWithLiveSources) {
+  dir.write("imu.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.81\n");
+  const std::string e = errorOf(dir, "[imu_csv]\nenabled = true\npath = \"imu.csv\"\n[gps]\ndevice = \"/dev/null\"\n");
+#ifdef HEADINGD_WITH_GPS_SERIAL
+  EXPECT_NE(e.find(at(2) + "[imu_csv] enabled: a file source on its own time axis cannot run together"),
+            std::string::npos) << e;
+  EXPECT_EQ(errorOf(dir, "[imu_csv]\nenabled = true\npath = \"imu.csv\"\ntime_axis = \"monotonic\"\n"
+                         "[gps]\ndevice = \"/dev/null\"\n"),
+            "");
+#else
+  EXPECT_NE(e.find("[gps]: this headingd was built without"), std::string::npos) << e;
+#endif
+}
+
+TEST(DaemonConfig, RelativePathsAreTakenFromTheConfigFolder) {
+  TempDir dir;
+  dir.write("imu.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.81\n");
+  const DaemonConfig c = loadDaemonConfig(dir.write("ok.toml", "[imu_csv]\nenabled = true\npath = \"imu.csv\"\n"));
+  EXPECT_EQ(c.imu_csv.imu_csv_path, dir.path() + "/imu.csv");
+  EXPECT_TRUE(c.imu_csv.enabled);
+}
+
+TEST(DaemonConfig, EmptyFileGivesTheDocumentedDefaults) {
+  TempDir dir;
+  const DaemonConfig c = loadDaemonConfig(dir.write("empty.toml", ""));
+  EXPECT_EQ(c.rate_hz, 100.0);
+  EXPECT_EQ(c.lcm.url, "udpm://239.255.76.67:7667?ttl=0");
+  EXPECT_EQ(c.status_period_s, 1.0);
+  EXPECT_FALSE(c.imu_csv.enabled);
+}
+
+// config/headingd.toml documents every key with its default: loading it must give exactly
+// the compiled-in defaults.
+TEST(DaemonConfig, ShippedDefaultsFileMatchesTheCompiledDefaults) {
+  const DaemonConfig shipped = loadDaemonConfig(HEADINGD_CONFIG_DIR "/headingd.toml");
+  const DaemonConfig d;
+  EXPECT_EQ(shipped.rate_hz, d.rate_hz);
+  EXPECT_EQ(shipped.imu_timeout_s, d.imu_timeout_s);
+  EXPECT_EQ(shipped.status_period_s, d.status_period_s);
+  EXPECT_EQ(shipped.console_status, d.console_status);
+  EXPECT_EQ(shipped.imu_ring_capacity, d.imu_ring_capacity);
+  EXPECT_EQ(shipped.gps_ring_capacity, d.gps_ring_capacity);
+  EXPECT_EQ(shipped.realtime.sched_fifo_priority, d.realtime.sched_fifo_priority);
+  EXPECT_EQ(shipped.realtime.cpu_affinity, d.realtime.cpu_affinity);
+  EXPECT_EQ(shipped.realtime.lock_memory, d.realtime.lock_memory);
+  EXPECT_EQ(shipped.lcm.url, d.lcm.url);
+  EXPECT_EQ(shipped.lcm.heading_channel, d.lcm.heading_channel);
+  EXPECT_EQ(shipped.lcm.attitude_channel, d.lcm.attitude_channel);
+  EXPECT_EQ(shipped.lcm.imu_channel, d.lcm.imu_channel);
+  EXPECT_EQ(shipped.lcm.gps_channel, d.lcm.gps_channel);
+  EXPECT_EQ(shipped.lcm.status_channel, d.lcm.status_channel);
+  EXPECT_EQ(shipped.lcm.publish_imu, d.lcm.publish_imu);
+  EXPECT_EQ(shipped.lcm.publish_gps, d.lcm.publish_gps);
+  EXPECT_EQ(shipped.log.level, d.log.level);
+  EXPECT_EQ(shipped.log.file, d.log.file);
+  EXPECT_EQ(shipped.log.repeat_burst, d.log.repeat_burst);
+  EXPECT_EQ(shipped.log.repeat_interval_s, d.log.repeat_interval_s);
+  EXPECT_EQ(shipped.imu_csv.enabled, d.imu_csv.enabled);
+  EXPECT_EQ(shipped.imu_csv.speed, d.imu_csv.speed);
+  EXPECT_EQ(shipped.imu_csv.at_end, d.imu_csv.at_end);
+  EXPECT_EQ(shipped.imu_csv.monotonic_time, d.imu_csv.monotonic_time);
+  EXPECT_EQ(shipped.imu_csv.start_delay_s, d.imu_csv.start_delay_s);
+  EXPECT_EQ(shipped.imu_csv.nmea_first_epoch_t_s, d.imu_csv.nmea_first_epoch_t_s);
+  EXPECT_FALSE(shipped.wmm_path.empty());  // the shipped file names the bundled model
+}
+
+TEST(DaemonConfig, DemoConfigLoads) {
+  const DaemonConfig demo = loadDaemonConfig(HEADINGD_CONFIG_DIR "/demo.toml");
+  EXPECT_TRUE(demo.imu_csv.enabled);
+  EXPECT_TRUE(demo.console_status);
+  EXPECT_NE(demo.lcm.url.find("ttl=0"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace headingd::daemon

@@ -1,0 +1,145 @@
+// The daemon with its live sources: a GPS on a real pseudo-terminal (fed a gpsd capture)
+// beside a recording on the monotonic time axis, and a CAN source on a host without CAN.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <regex>
+
+#include "daemon_test_support.hpp"
+#include "lcm_collector.hpp"
+#include "pty_fixture.hpp"
+
+namespace headingd::daemon {
+namespace {
+
+using namespace std::chrono_literals;
+using test::ChildProcess;
+using test::LcmCollector;
+
+constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+std::string lcmUrl(int offset) {
+  return "udpm://239.255.76.67:" + std::to_string(20000 + (getpid() % 20000) * 2 + offset) + "?ttl=0";
+}
+
+template <class P>
+bool waitUntil(P predicate, std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < until) {
+    if (predicate()) return true;
+    std::this_thread::sleep_for(10ms);
+  }
+  return predicate();
+}
+
+const headingd::source_status_t* findSource(const headingd::status_t& s, const std::string& kind) {
+  for (const auto& src : s.sources) {
+    if (src.kind == kind) return &src;
+  }
+  return nullptr;
+}
+
+std::int64_t counter(const headingd::source_status_t& s, const std::string& name) {
+  for (const auto& c : s.counters) {
+    if (c.name == name) return c.value;
+  }
+  return -1;
+}
+
+// mt3339.log: a MediaTek receiver in Oregon (44.07 N, 121.31 W), 30 one-second epochs with
+// RMC and GGA, 2015-04-13.
+TEST(DaemonLiveSources, SerialGpsOnAPtyFeedsGpsMessagesAndTheWmmDeclination) {
+  test::TempDir dir;
+  headingd::test::PtyPair pty;
+  const std::string link = dir.file("gps0");
+  headingd::test::pointSymlink(link, pty.slavePath());
+  const std::string url = lcmUrl(10);
+  const std::string config = dir.write(
+      "live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
+                       "\"\n[imu_csv]\nenabled = true\npath = \"" + kTrial +
+                       "\"\ntime_axis = \"monotonic\"\n[gps]\ndevice = \"" + link +
+                       "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n");
+  LcmCollector lcm(url);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  // Fed once the reader has the port open (STATUS shows the source running).
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        const auto s = lcm.status();
+        const auto* gps = s.empty() ? nullptr : findSource(s.back().message, "gps_serial");
+        return gps != nullptr && gps->state == "running";
+      },
+      5s))
+      << test::readFile(dir.file("err"));
+  const auto bytes = headingd::test::readWireBytes(HEADINGD_GPSD_LOGS_DIR "/mt3339.log");
+  pty.writePaced(bytes, headingd::test::lineBytesPerSecond(38400));
+  EXPECT_TRUE(waitUntil([&] { return lcm.gps().size() >= 30; }, 5s)) << lcm.gps().size() << " GPS messages";
+  std::this_thread::sleep_for(1200ms);  // one more STATUS
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.waitFor(1s), 0);
+  lcm.stop();
+
+  const auto gps = lcm.gps();
+  ASSERT_GE(gps.size(), 30u);
+  const auto& fix = gps.back().message;
+  EXPECT_TRUE(fix.fix_ok);
+  EXPECT_NEAR(fix.latitude_deg, 44.07, 0.01);
+  EXPECT_NEAR(fix.longitude_deg, -121.31, 0.01);
+  EXPECT_EQ(fix.source, "gps");
+  EXPECT_NEAR(fix.decimal_year, 2015.28, 0.01);
+
+  const auto status = lcm.status();
+  ASSERT_FALSE(status.empty());
+  const auto* source = findSource(status.back().message, "gps_serial");
+  ASSERT_NE(source, nullptr);
+  EXPECT_EQ(counter(*source, "epochs_pushed"), static_cast<std::int64_t>(gps.size()));
+  EXPECT_EQ(counter(*source, "nmea_bad_checksum"), 0);
+  EXPECT_EQ(status.back().message.state, "ok");
+
+  // The WMM at the receiver's position gives the declination (about 15 deg east there).
+  const auto heading = lcm.heading();
+  ASSERT_FALSE(heading.empty());
+  const auto& h = heading.back().message;
+  EXPECT_EQ(h.validity, std::int8_t{1});
+  EXPECT_NE(h.declination_source.find("wmm"), std::string::npos) << h.declination_source;
+  EXPECT_NEAR(h.declination_rad * kDeg, 15.0, 1.5);
+  EXPECT_NEAR(std::remainder((h.heading_true_rad - h.heading_mag_rad + h.mount_yaw_rad - h.declination_rad) * kDeg,
+                             360.0),
+              0.0, 1e-9);
+}
+
+// This host has no CAN in its kernel: the CAN source must say so on STATUS and keep
+// retrying, the daemon must run degraded and stop cleanly.
+TEST(DaemonLiveSources, CanSourceWithoutCanSupportWaitsAndReports) {
+  test::TempDir dir;
+  std::string can_table = test::readFile(HEADINGD_CONFIG_DIR "/can-headingd.toml");
+  can_table = std::regex_replace(can_table, std::regex("dbc = \"dbc/"), "dbc = \"" HEADINGD_CONFIG_DIR "/dbc/");
+  can_table = std::regex_replace(can_table, std::regex("interface = \"can0\""), "interface = \"vcan7\"");
+  const std::string url = lcmUrl(11);
+  const std::string config = dir.write("can.toml", "[daemon]\nimu_timeout_s = 0.2\nstatus_period_s = 0.2\n[lcm]\nurl = \"" +
+                                                       url + "\"\n" + can_table);
+  LcmCollector lcm(url);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  EXPECT_TRUE(waitUntil([&] { return lcm.status().size() >= 5; }, 5s)) << test::readFile(dir.file("err"));
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.waitFor(1s), 0) << test::readFile(dir.file("err"));
+  lcm.stop();
+  const auto status = lcm.status();
+  ASSERT_FALSE(status.empty());
+  const auto& last = status.back().message;
+  EXPECT_EQ(last.state, "degraded");
+  const auto* can = findSource(last, "can");
+  ASSERT_NE(can, nullptr);
+  if (can->state == "running") GTEST_SKIP() << "this host has vcan7: the no-CAN path is not exercised";
+  EXPECT_EQ(can->state, "waiting");
+  EXPECT_FALSE(can->last_error.empty());
+  // Either the kernel has no CAN at all (this host) or no such interface.
+  EXPECT_TRUE(can->last_error.find("CAN") != std::string::npos || can->last_error.find("vcan7") != std::string::npos)
+      << can->last_error;
+  EXPECT_GE(counter(*can, "open_failures"), 1);
+  std::fprintf(stderr, "CAN source: %s, %s\n", can->state.c_str(), can->last_error.c_str());
+}
+
+}  // namespace
+}  // namespace headingd::daemon
