@@ -122,6 +122,20 @@ trap 'say "terminated"; exit 143' TERM
   printf 'exec'; printf ' %q' "$@"; printf '\n'
 } >"$job/run.sh"
 
+# The guest mounts fresh tmpfs on /tmp and /run, which would hide a checkout or build tree
+# there (a CI job may clone under /tmp): share the top directory of each such path.
+repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd -P)
+for path in "$(pwd -P)" "$repo_root"; do
+  case "$path" in
+    /tmp/?*|/run/?*)
+      top=$(printf '%s' "$path" | cut -d/ -f1-3)
+      already=0
+      for d in "${rw_dirs[@]}"; do [[ "$d" == "$top" ]] && already=1; done
+      ((already)) || rw_dirs+=("$top")
+      ;;
+  esac
+done
+
 rw_args=()
 : >"$job/rw-mounts"
 for i in "${!rw_dirs[@]}"; do
