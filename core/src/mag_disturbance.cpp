@@ -21,9 +21,9 @@ MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_r
   MagDisturbance d;
   d.norm_jump = norm_deviation_ > norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT);
   d.dip_jump = dip_deviation_ > dip_floor_.threshold(4.0, p_.max_dip_deviation_rad, 5.0 * p_.max_dip_deviation_rad);
-  if (has_reference_) {
-    d.norm_reference = std::abs(field_norm_uT - reference_norm_uT_) > p_.max_reference_norm_deviation_uT;
-    d.dip_reference = std::abs(dip_rad - reference_dip_rad_) > p_.max_reference_dip_deviation_rad;
+  if (has_reference_) {  // on the low-passes: a steady offset, not single noisy samples
+    d.norm_reference = std::abs(norm_lp_.value() - reference_norm_uT_) > p_.max_reference_norm_deviation_uT;
+    d.dip_reference = std::abs(dip_lp_.value() - reference_dip_rad_) > p_.max_reference_dip_deviation_rad;
   }
   return d;
 }

@@ -25,8 +25,8 @@ struct MagDisturbanceParams {
   double time_constant_s;      // low-pass of strength and dip (§4.2: about 3 s)
   double max_norm_deviation_uT;
   double max_dip_deviation_rad;
-  double max_reference_norm_deviation_uT;  // |‖m‖ - F_WMM|
-  double max_reference_dip_deviation_rad;  // |dip - I_WMM|
+  double max_reference_norm_deviation_uT;  // |low-passed ‖m‖ - F_WMM|
+  double max_reference_dip_deviation_rad;  // |low-passed dip - I_WMM|
 };
 
 // Which tests found the sample disturbed (several may).
