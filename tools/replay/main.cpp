@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "headingd/core/heading_pipeline.hpp"
+#include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/core/params_toml.hpp"
 #include "headingd/replay/imu_csv.hpp"
@@ -60,12 +61,21 @@ int main(int argc, char** argv) {
                  "Alignment: the first NMEA epoch (first sentence with a UTC time) is at IMU time "
                  "--nmea-first-epoch-t, later epochs at that plus their UTC difference");
   app.add_option("--nmea-first-epoch-t", nmea_first_epoch_t, "IMU time [s] of the first NMEA epoch (default 0)");
+  std::string calib_path;
+  app.add_option("--calib", calib_path,
+                 "calibration TOML (headingd-calibrate --out): gyro bias/scale, accelerometer scale/bias and "
+                 "magnetometer D, offset are applied to every sample before the estimator");
   app.add_option("--wmm", wmm_path, "World Magnetic Model coefficients (NOAA COF)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   try {
     const core::EstimatorParams params = loadParams(config);
-    const auto samples = replay::readImuCsv(imu_csv);
+    auto samples = replay::readImuCsv(imu_csv);
+    if (!calib_path.empty()) {
+      const core::ImuCorrection correction(
+          core::parseImuCalibration(replay::readMaybeGzipFile(calib_path), calib_path));
+      for (auto& s : samples) s = correction.apply(s);
+    }
     const bool with_gps = !nmea_path.empty();
     replay::NmeaEpochs gps;
     std::optional<core::WorldMagneticModel> wmm;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "headingd/sim/scenario.hpp"
+#include "headingd/sim/calibration_scenarios.hpp"
 
 namespace headingd::sim {
 
@@ -179,7 +180,10 @@ PhaseTime phaseAt(const Scenario& s, double t_s) {
   return {};
 }
 
-std::vector<std::string> scenarioNames() { return {"thesis-declination", "urban-walk", "static-disturbed", "crawl", "run"}; }
+std::vector<std::string> scenarioNames() {
+  return {"thesis-declination", "urban-walk", "static-disturbed", "crawl", "run",
+          "calib-six-position", "calib-rotation", "calib-rotation-long"};
+}
 
 Scenario makeScenario(std::string_view name) {
   if (name == "thesis-declination") return thesisDeclination();
@@ -187,6 +191,9 @@ Scenario makeScenario(std::string_view name) {
   if (name == "static-disturbed") return staticDisturbed();
   if (name == "crawl") return crawl();
   if (name == "run") return run();
+  if (name == "calib-six-position") return calibSixPosition();
+  if (name == "calib-rotation") return calibRotation();
+  if (name == "calib-rotation-long") return calibRotationLong();
   throw std::invalid_argument("unknown scenario '" + std::string(name) + "'");
 }
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "headingd/sim/gait.hpp"
+#include "headingd/sim/scripted_trajectory.hpp"
 
 namespace headingd::sim {
 
@@ -73,6 +74,7 @@ PhaseState phaseState(const Scenario& s, double t) {
 Trajectory generateTrajectory(const Scenario& scenario, double rate_hz, Rng rng) {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw std::invalid_argument("IMU rate must be positive");
   if (scenario.phases.empty()) throw std::invalid_argument("scenario has no phases");
+  if (scenario.scripted) return generateScriptedTrajectory(scenario, rate_hz, rng);
   const double dt = 1.0 / rate_hz;
   const auto rows = static_cast<std::size_t>(std::floor(scenario.durationS() * rate_hz + 1e-9)) + 1;
 

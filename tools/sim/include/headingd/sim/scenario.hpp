@@ -2,6 +2,7 @@
 // A scenario: what the person does, phase by phase, where the magnetic field is disturbed
 // and how good the GPS sky is. Pure data; trajectory.hpp turns it into motion.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,12 +47,41 @@ struct GpsEnvironment {
   int satellites = 10;                // typical number used
 };
 
+// A sensor turned by hand or set down on a table, for calibration recordings: the attitude
+// follows keyframes of zyx Euler angles (roll, pitch, yaw of the sensor, degrees) at given
+// times. Between two keyframes each angle moves along a smootherstep (zero rate and angular
+// acceleration at both keyframes); two equal keyframes hold the sensor still. The angles
+// are not wrapped, so a keyframe 360° on from the last one is a full turn. The rotation is
+// about a fixed point; the sensor sits `lever_arm_body_m` from it (body axes), so turning
+// also accelerates it (zero lever arm: pure rotation, Kok & Schön §8).
+struct OrientationKeyframe {
+  double t_s = 0.0;
+  double roll_deg = 0.0;
+  double pitch_deg = 0.0;
+  double yaw_deg = 0.0;
+};
+
+struct ScriptedOrientation {
+  std::vector<OrientationKeyframe> keyframes;  // t_s increasing, the first at 0
+  core::Vec3 lever_arm_body_m = core::Vec3::Zero();
+  double height_m = 1.0;            // of the rotation centre above the ground
+  // Hand tremor: small rotations (a seeded sum of sinusoids at 6-12 Hz, physiological tremor)
+  // plus a slow drift of the hand (0.1-0.5 Hz); 0 on a table.
+  double tremor_deg = 0.0;
+  double hand_drift_deg = 0.0;
+  // The truth's `moving` flag: the scripted rate (without tremor) above this.
+  double moving_rate_deg_s = 2.0;
+};
+
 struct Scenario {
   std::string name;
   std::string description;
   double initial_heading_deg = 0.0;
   std::vector<Phase> phases;
   GpsEnvironment gps;
+  // Set for calibration scenarios: the attitude comes from the keyframes instead of the
+  // person's gait (phases then only give the duration, field and GPS conditions).
+  std::optional<ScriptedOrientation> scripted;
 
   double durationS() const;
 };

@@ -1,0 +1,101 @@
+#pragma once
+// The cost of Kok & Schön (2016) eq. 6: ½ Σ_t ‖y_t - ŷ_t|t-1(θ)‖²_{S_t⁻¹} + log det S_t,
+// with ŷ and S from the EKF of ml_ekf.hpp. Templated on the scalar: double for the value,
+// ceres::Jet for its exact gradient.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "headingd/calib/ml_data.hpp"
+#include "headingd/calib/ml_ekf.hpp"
+#include "headingd/calib/ml_parameters.hpp"
+
+namespace headingd::calib {
+
+// The EKF's first attitude's uncertainty: a TRIAD from the mean of a few samples.
+inline constexpr double kMlInitialAttitudeSigma_rad = 0.05;
+
+// Normalised residuals L_t⁻¹(y_t - ŷ_t|t-1) of one sample (K&S §7.2, Figs. 5-6); the
+// magnetometer part is NaN where the sample has none.
+struct MlResidual {
+  core::Vec3 accel = core::Vec3::Zero();
+  core::Vec3 mag = core::Vec3::Zero();
+  bool has_mag = false;
+};
+
+// Mean accelerometer and raw magnetometer of the first `initial_average_samples` samples.
+inline void initialMeans(const MlData& data, core::Vec3& accel, core::Vec3& mag, bool& have_mag) {
+  const std::size_t n = std::min(std::max<std::size_t>(data.initial_average_samples, 1), data.samples.size());
+  accel.setZero();
+  mag.setZero();
+  std::size_t mags = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    accel += data.samples[i].accel_m_s2;
+    if (data.samples[i].has_mag) {
+      mag += data.samples[i].mag_unit;
+      ++mags;
+    }
+  }
+  accel /= static_cast<double>(std::max<std::size_t>(n, 1));
+  have_mag = mags > 0;
+  if (have_mag) mag /= static_cast<double>(mags);
+}
+
+// Runs the EKF over `data` with `model` and returns the cost of eq. 6 (without the constant
+// 3 log 2π per factor). False if an innovation covariance stops being positive definite or
+// the cost is not finite; `residuals`, when given, receives one entry per sample.
+template <typename T>
+bool mlNegativeLogLikelihood(const MlModel<T>& model, const MlData& data, T& cost,
+                             std::vector<MlResidual>* residuals = nullptr) {
+  using std::isfinite;
+  cost = T(0.0);
+  if (data.samples.empty()) return false;
+  MlEkf<T> ekf(model, data.gravity_m_s2);
+  core::Vec3 accel0, mag0;
+  bool have_mag0 = false;
+  initialMeans(data, accel0, mag0, have_mag0);
+  if (have_mag0) {
+    ekf.initialise(accel0.cast<T>(), mag0.cast<T>(), kMlInitialAttitudeSigma_rad);
+  } else {
+    ekf.initialiseFromGravity(accel0.cast<T>(), kMlInitialAttitudeSigma_rad);
+  }
+  if (residuals) residuals->assign(data.samples.size(), MlResidual{});
+  for (std::size_t i = 0; i < data.samples.size(); ++i) {
+    const MlSample& s = data.samples[i];
+    ekf.predict(s.gyro_rad_s, s.dt_s);
+    const InnovationTerm<T> a = ekf.updateAccel(s.accel_m_s2);
+    if (!a.ok) return false;
+    cost += a.cost;
+    if (residuals) {
+      for (int k = 0; k < 3; ++k) (*residuals)[i].accel(k) = scalarPart(a.normalised(k));
+    }
+    if (s.has_mag) {
+      const InnovationTerm<T> m = ekf.updateMag(s.mag_unit);
+      if (!m.ok) return false;
+      cost += m.cost;
+      if (residuals) {
+        for (int k = 0; k < 3; ++k) (*residuals)[i].mag(k) = scalarPart(m.normalised(k));
+        (*residuals)[i].has_mag = true;
+      }
+    } else if (residuals) {
+      (*residuals)[i].mag.setConstant(std::nan(""));
+    }
+  }
+  return isfinite(cost);
+}
+
+// The functor Ceres's first-order functions call: θ (34 numbers) → cost.
+class MlCostFunctor {
+ public:
+  explicit MlCostFunctor(const MlData* data) : data_(data) {}
+  template <typename T>
+  bool operator()(const T* theta, T* cost) const {
+    return mlNegativeLogLikelihood<T>(modelFromParameters<T>(theta), *data_, *cost);
+  }
+
+ private:
+  const MlData* data_;
+};
+
+}  // namespace headingd::calib

@@ -1,0 +1,68 @@
+#pragma once
+// Shared by the calibration tests: the shipped WMM, simulator runs cached per configuration,
+// and the columns the calibration routines take.
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "headingd/core/imu_sample.hpp"
+#include "headingd/core/wmm.hpp"
+#include "headingd/sim/simulation.hpp"
+
+namespace headingd::calib_test {
+
+inline const core::WorldMagneticModel& shippedWmm() {
+  static const core::WorldMagneticModel model = [] {
+    std::ifstream in(HEADINGD_CALIB_TEST_COF, std::ios::binary);
+    if (!in) throw std::runtime_error(HEADINGD_CALIB_TEST_COF ": cannot open");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return core::WorldMagneticModel(core::parseWmmCoefficients(text.str(), HEADINGD_CALIB_TEST_COF));
+  }();
+  return model;
+}
+
+inline const sim::SimResult& simulated(const std::string& scenario, std::uint64_t seed,
+                                       sim::ImuGrade grade = sim::ImuGrade::kUncalibrated) {
+  using Key = std::tuple<std::string, std::uint64_t, int>;
+  static std::map<Key, sim::SimResult> cache;
+  const Key key{scenario, seed, static_cast<int>(grade)};
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    sim::SimConfig c;
+    c.scenario = scenario;
+    c.seed = seed;
+    c.imu_grade = grade;
+    it = cache.emplace(key, sim::simulate(c, shippedWmm())).first;
+  }
+  return it->second;
+}
+
+inline std::vector<core::ImuSample> samplesOf(const sim::SimResult& r) {
+  std::vector<core::ImuSample> out;
+  out.reserve(r.imu.size());
+  for (const sim::ImuRow& row : r.imu) {
+    core::ImuSample s;
+    s.t_ns = static_cast<std::int64_t>(std::llround(row.t_s * 1e9));
+    s.gyro_rad_s = row.gyro_rad_s;
+    s.accel_m_s2 = row.accel_m_s2;
+    s.mag_uT = row.mag_uT;
+    out.push_back(s);
+  }
+  return out;
+}
+
+inline std::vector<core::Vec3> magOf(const sim::SimResult& r) {
+  std::vector<core::Vec3> out;
+  out.reserve(r.imu.size());
+  for (const sim::ImuRow& row : r.imu) out.push_back(row.mag_uT);
+  return out;
+}
+
+inline double fieldNorm(const sim::SimResult& r) { return r.wmm.f_nT / 1000.0; }
+
+}  // namespace headingd::calib_test
