@@ -3,12 +3,14 @@
 #include <boost/asio/post.hpp>
 #include <future>
 
+#include "headingd/daemon/can_assembler_report.hpp"
+#include "headingd/daemon/can_epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
 
 namespace headingd::daemon {
 namespace {
-// Flush period: an epoch whose last frame never comes is released (or counted incomplete)
-// at most this late; also how often the counters are copied for STATUS.
+// How often the open epoch is checked (can_epoch_flush.hpp says when it is given up on) and
+// the counters are copied for STATUS.
 constexpr auto kTimerPeriod = std::chrono::milliseconds(10);
 }  // namespace
 
@@ -22,6 +24,7 @@ CanImuSource::CanImuSource(std::string name, const can::CanConfig& config, std::
       timer_(io_) {
   codec_ = std::make_unique<can::ImuFrameCodec>(config_, dbc_);
   assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(config_));
+  flush_age_ns_ = epochFlushAgeNs(config_, *codec_);
   receiver_ = std::make_unique<can::SocketCanReceiver>(io_, can::receiverSettingsFrom(config_, *codec_),
                                                       [this](const can::CanFrame& f) { onFrame(f); });
 }
@@ -51,7 +54,7 @@ void CanImuSource::pushSamples(const can::AssembledSamples& samples) {
 void CanImuSource::onFrame(const can::CanFrame& frame) { pushSamples(assembler_->push(frame)); }
 
 void CanImuSource::onTimer() {
-  pushSamples(assembler_->flush(realtimeNs()));
+  pushSamples(flushEpoch(*assembler_, config_, flush_age_ns_, realtimeNs()));
   {
     std::lock_guard lock(snapshot_mutex_);
     snapshot_ = assembler_->counters();
@@ -108,16 +111,7 @@ void CanImuSource::report(SourceReport& out) const {
   out.set(i++, "controller_rx_overflow", r.bus.controller_rx_overflow);
   out.set(i++, "protocol_violations", r.bus.protocol_violations);
   std::lock_guard lock(snapshot_mutex_);
-  const can::AssemblerCounters& a = snapshot_;
-  out.set(i++, "samples", a.samples);
-  out.set(i++, "samples_with_mag", a.samples_with_mag);
-  out.set(i++, "incomplete_epochs", a.incomplete_epochs);
-  out.set(i++, "sequence_gaps", a.sequence_gaps);
-  out.set(i++, "missing_epochs", a.missing_epochs);
-  out.set(i++, "duplicate_frames", a.duplicate_frames);
-  out.set(i++, "late_frames", a.late_frames);
-  out.set(i++, "unknown_id_frames", a.unknown_id_frames);
-  out.set(i++, "wrong_length_frames", a.wrong_length_frames);
+  reportAssemblerCounters(out, &i, snapshot_);
 }
 
 }  // namespace headingd::daemon

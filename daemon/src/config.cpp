@@ -11,7 +11,8 @@
 namespace headingd::daemon {
 namespace {
 
-constexpr const char* kTables[] = {"daemon", "log", "realtime", "rings", "lcm", "estimator", "imu_csv", "can", "gps"};
+constexpr const char* kTables[] = {"daemon",  "log",      "realtime",    "rings",    "lcm", "estimator",
+                                   "imu_csv", "playback", "candump_log", "nmea_log", "can", "gps"};
 
 // The [estimator] table alone, on the same lines as in the file, for core's parser
 // (which accepts only that table): its header and key lines stay, all others go blank.
@@ -171,6 +172,41 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   }
   csv.rejectUnknownKeys();
 
+  TomlTableReader playback(doc["playback"].as_table(), source, "playback");
+  c.playback.speed = playback.number("speed", c.playback.speed, 0.01, 1000.0, "x real time");
+  c.playback.start_delay_s = playback.number("start_delay_s", c.playback.start_delay_s, 0.0, 3600.0, "s");
+  c.playback.at_end = playback.choice("at_end", "stay", {"stay", "exit"}) == "exit" ? AtEnd::kExit : AtEnd::kStay;
+  playback.rejectUnknownKeys();
+
+  TomlTableReader candump(doc["candump_log"].as_table(), source, "candump_log");
+  c.candump_log.enabled = candump.boolean("enabled", false);
+  c.candump_log.path = candump.path("path", "", base_dir, c.candump_log.enabled);
+  c.candump_log.can_config_path = candump.path("can_config", "", base_dir, c.candump_log.enabled);
+  if (c.candump_log.enabled) {
+    if (c.candump_log.path.empty()) candump.fail("path", "expected the candump -l log to play (the source is enabled)");
+    if (c.candump_log.can_config_path.empty()) {
+      candump.fail("can_config", "expected a file with the [can] table that decodes the log (e.g. can-headingd.toml)");
+    }
+#ifdef HEADINGD_WITH_CAN
+    c.candump_log_can = can::loadCanConfigFile(c.candump_log.can_config_path);
+#else
+    candump.fail("enabled", "this headingd was built without the CAN driver, which decodes candump logs");
+#endif
+  }
+  candump.rejectUnknownKeys();
+
+  TomlTableReader nmea_log(doc["nmea_log"].as_table(), source, "nmea_log");
+  c.nmea_log.enabled = nmea_log.boolean("enabled", false);
+  c.nmea_log.path = nmea_log.path("path", "", base_dir, c.nmea_log.enabled);
+  if (c.nmea_log.enabled && c.nmea_log.path.empty()) {
+    nmea_log.fail("path", "expected the NMEA log to play (the source is enabled)");
+  }
+  c.nmea_log.time_offset_s = nmea_log.number("time_offset_s", 0.0, -1e9, 1e9, "s");
+#ifndef HEADINGD_WITH_GPS_SERIAL
+  if (c.nmea_log.enabled) nmea_log.fail("enabled", "this headingd was built without the NMEA log player");
+#endif
+  nmea_log.rejectUnknownKeys();
+
   c.has_can_table = doc["can"].is_table();
   c.has_gps_table = doc["gps"].is_table();
   bool live_source = false;
@@ -195,6 +231,13 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   if (c.imu_csv.enabled && live_source && !c.imu_csv.monotonic_time) {
     csv.fail("enabled", "a file source on its own time axis cannot run together with the live sources "
                         "[can] / [gps]; set time_axis = \"monotonic\" (speed 1) or disable one of them");
+  }
+  // The logs play on their own clock (the candump log's UNIX time, the NMEA UTC).
+  const bool log_source = c.candump_log.enabled || c.nmea_log.enabled;
+  if (log_source && (live_source || c.imu_csv.enabled)) {
+    TomlTableReader& r = c.candump_log.enabled ? candump : nmea_log;
+    r.fail("enabled", "the log sources [candump_log] / [nmea_log] play on the logs' own clock and cannot run "
+                      "together with [can], [gps] or [imu_csv]; disable one of them");
   }
   return c;
 }

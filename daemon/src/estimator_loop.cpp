@@ -82,7 +82,7 @@ void EstimatorLoop::run() {
     }
     const std::int64_t wake = monotonicNs();
     const bool exit_after_this_tick = sourcesWantExit();  // seen before draining: their data is all in
-    tick(wake);
+    tick(wake, exit_after_this_tick);
     const std::int64_t done = monotonicNs();
     ++ticks_;
     jitter_total_.record(wake - deadline);
@@ -115,13 +115,15 @@ void EstimatorLoop::run() {
 }
 
 bool EstimatorLoop::sourcesWantExit() const {
+  bool wanted = false;
   for (const Source* s : sources_) {
-    if (s->wantsExit()) return true;
+    if (s->playing()) return false;  // all file sources first play to their end
+    wanted = wanted || s->wantsExit();
   }
-  return false;
+  return wanted;
 }
 
-void EstimatorLoop::tick(std::int64_t wake_ns) {
+void EstimatorLoop::tick(std::int64_t wake_ns, bool last_tick) {
   if (reload_requested_.exchange(false)) reloadCalibration();
   const std::int64_t utime_us = realtimeNs() / 1000;
 
@@ -163,9 +165,10 @@ void EstimatorLoop::tick(std::int64_t wake_ns) {
       processGps(gps_pending_[next_gps++], utime_us);
     }
   }
-  // Without IMU data an epoch would wait for ever: then it goes in as it is.
+  // Without IMU data an epoch would wait for ever: then it goes in as it is (also on the
+  // last tick, when a file's last epoch is later than its last IMU sample).
   const bool imu_stale = !any_imu_used_ || wake_ns - last_used_arrival_ns_ > imu_timeout_ns_;
-  if (imu_stale) {
+  if (imu_stale || last_tick) {
     while (next_gps < gps_pending_.size()) processGps(gps_pending_[next_gps++], utime_us);
   }
   gps_pending_.erase(gps_pending_.begin(), gps_pending_.begin() + static_cast<std::ptrdiff_t>(next_gps));
@@ -186,7 +189,8 @@ void EstimatorLoop::tick(std::int64_t wake_ns) {
 
   const std::int64_t now = monotonicNs();
   publishEstimate(now, utime_us);
-  if (now - last_status_ns_ >= status_period_ns_) publishStatus(now, utime_us);
+  // The last tick too, so that STATUS shows the sources finished and their final counters.
+  if (now - last_status_ns_ >= status_period_ns_ || last_tick) publishStatus(now, utime_us);
 }
 
 void EstimatorLoop::processImu(const ImuRingEntry& e, std::int64_t utime_us) {

@@ -173,9 +173,51 @@ TEST(DaemonConfig, ShippedDefaultsFileMatchesTheCompiledDefaults) {
   EXPECT_FALSE(shipped.wmm_path.empty());  // the shipped file names the bundled model
 }
 
+TEST_F(DaemonConfigErrors, LogSourcesNameTheirKeys) {
+  EXPECT_NE(errorOf(dir, "[candump_log]\nenabled = true\n").find(dir.file("bad.toml") + ": [candump_log] path: expected the candump -l log"),
+            std::string::npos);
+  dir.write("can.log", "(1.000000) can0 120#00\n");
+  const std::string no_can = errorOf(dir, "[candump_log]\nenabled = true\npath = \"can.log\"\n");
+  EXPECT_NE(no_can.find("[candump_log] can_config: expected a file with the [can] table"), std::string::npos) << no_can;
+  const std::string missing = errorOf(dir, "[nmea_log]\nenabled = true\npath = \"none.nmea\"\n");
+  EXPECT_NE(missing.find(at(3) + "[nmea_log] path: cannot open"), std::string::npos) << missing;
+  EXPECT_NE(errorOf(dir, "[playback]\nspeed = 0\n").find(at(2) + "[playback] speed: 0 is out of range"),
+            std::string::npos);
+  EXPECT_NE(errorOf(dir, "[playback]\nat_end = \"loop\"\n").find(at(2) + "[playback] at_end: 'loop' is not one of"),
+            std::string::npos);
+  EXPECT_NE(errorOf(dir, "[nmea_log]\ntime_offset = 1\n").find(at(2) + "[nmea_log] time_offset: unknown key"),
+            std::string::npos);
+#ifdef HEADINGD_WITH_GPS_SERIAL
+  dir.write("gps.nmea", "$GPGGA,120000.00,,,,,0,00,99.99,,M,,M,,*65\n");
+  const std::string mixed =
+      errorOf(dir, "[nmea_log]\nenabled = true\npath = \"gps.nmea\"\n[gps]\ndevice = \"/dev/null\"\n");
+  EXPECT_NE(mixed.find(at(2) + "[nmea_log] enabled: the log sources [candump_log] / [nmea_log] play on the logs' own "
+                               "clock and cannot run together"),
+            std::string::npos)
+      << mixed;
+#endif
+}
+
+TEST(DaemonConfig, ShippedDefaultsFileHasTheLogSourceDefaults) {
+  const DaemonConfig shipped = loadDaemonConfig(HEADINGD_CONFIG_DIR "/headingd.toml");
+  const DaemonConfig d;
+  EXPECT_EQ(shipped.playback.speed, d.playback.speed);
+  EXPECT_EQ(shipped.playback.start_delay_s, d.playback.start_delay_s);
+  EXPECT_EQ(shipped.playback.at_end, d.playback.at_end);
+  EXPECT_EQ(shipped.candump_log.enabled, d.candump_log.enabled);
+  EXPECT_EQ(shipped.candump_log.path, d.candump_log.path);
+  EXPECT_EQ(shipped.candump_log.can_config_path, d.candump_log.can_config_path);
+  EXPECT_EQ(shipped.nmea_log.enabled, d.nmea_log.enabled);
+  EXPECT_EQ(shipped.nmea_log.path, d.nmea_log.path);
+  EXPECT_EQ(shipped.nmea_log.time_offset_s, d.nmea_log.time_offset_s);
+}
+
 TEST(DaemonConfig, DemoConfigLoads) {
   const DaemonConfig demo = loadDaemonConfig(HEADINGD_CONFIG_DIR "/demo.toml");
-  EXPECT_TRUE(demo.imu_csv.enabled);
+  EXPECT_TRUE(demo.candump_log.enabled);
+  EXPECT_TRUE(demo.nmea_log.enabled);
+  EXPECT_EQ(demo.candump_log.path, HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz");
+  EXPECT_EQ(demo.playback.at_end, AtEnd::kExit);
   EXPECT_TRUE(demo.console_status);
   EXPECT_NE(demo.lcm.url.find("ttl=0"), std::string::npos);
 }

@@ -10,11 +10,11 @@
 #include <map>
 #include <net/if.h>
 #include <numbers>
-#include <regex>
 #include <sstream>
 
 #include "daemon_test_support.hpp"
 #include "lcm_collector.hpp"
+#include "vcan_test_support.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -26,12 +26,7 @@ using test::LcmCollector;
 constexpr double kDeg = 180.0 / std::numbers::pi;
 constexpr int kRows = 2857;  // the first 10 s of BROAD trial 05
 
-std::int64_t counter(const headingd::source_status_t& s, const std::string& name) {
-  for (const auto& c : s.counters) {
-    if (c.name == name) return c.value;
-  }
-  return -1;
-}
+using test::counter;
 
 TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
   if (if_nametoindex("vcan0") == 0) GTEST_SKIP() << "no vcan0: run through tools/scripts/vm-run.sh";
@@ -43,17 +38,8 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
                             std::to_string(kRows + 1) + " > " + dir.file("imu.csv");
     ASSERT_EQ(std::system(cmd.c_str()), 0);
   }
-  std::string can_table = test::readFile(HEADINGD_CONFIG_DIR "/can-headingd.toml");
-  can_table = std::regex_replace(can_table, std::regex("dbc = \"dbc/"), "dbc = \"" HEADINGD_CONFIG_DIR "/dbc/");
-  can_table = std::regex_replace(can_table, std::regex("interface = \"can0\""), "interface = \"vcan0\"");
-  // With epoch counters the window only decides when the periodic flush gives up on an
-  // epoch; under plain emulation canplayer's frames of one epoch can be milliseconds apart.
-  can_table = std::regex_replace(can_table, std::regex("\nepoch_window_s = [0-9.e-]+"), "\nepoch_window_s = 0.05");
-  dir.write("can.toml", can_table);
-  ASSERT_EQ(std::system((std::string(HEADINGD_CANDUMP_FROM_CSV_BIN) + " --imu-csv " + dir.file("imu.csv") +
-                         " --can-config " + dir.file("can.toml") + " --out " + dir.file("imu.log") + " >/dev/null")
-                            .c_str()),
-            0);
+  const std::string can_table = test::vcanCanTable(HEADINGD_CONFIG_DIR);
+  test::writeCandumpLog(dir, HEADINGD_CANDUMP_FROM_CSV_BIN, can_table, dir.file("imu.csv"));
 
   const std::string url = "udpm://239.255.76.67:7667?ttl=0";  // vcan runs are alone in their namespace
   const std::string config =
@@ -64,12 +50,7 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
   ChildProcess player({"/usr/bin/canplayer", "-I", dir.file("imu.log"), "vcan0=vcan0"}, dir.file("player.out"),
                       dir.file("player.err"));
   EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir.file("player.err"));
-  std::this_thread::sleep_for(1500ms);  // the last samples, one more STATUS
-  daemon.signal(SIGTERM);
-  EXPECT_EQ(daemon.waitFor(2s), 0) << test::readFile(dir.file("err"));
-  lcm.stop();
-  const std::string log = test::readFile(dir.file("err"));
-  std::fprintf(stderr, "%s", log.substr(log.rfind("summary") == std::string::npos ? 0 : log.rfind("summary")).c_str());
+  const std::string log = test::finishVcanRun(dir, daemon, lcm, 2s);
 
   // Every epoch became one sample and one IMU message.
   const auto status = lcm.status();

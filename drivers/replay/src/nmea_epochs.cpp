@@ -1,44 +1,16 @@
 #include "headingd/replay/nmea_epochs.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <numbers>
 
-#include "headingd/core/wmm.hpp"
 #include "headingd/nmea/comment_filter.hpp"
 #include "headingd/nmea/parser.hpp"
+#include "headingd/replay/gps_observation_from_fix.hpp"
 #include "headingd/replay/numeric_csv.hpp"
 
 namespace headingd::replay {
 namespace {
 
 constexpr std::int64_t kDayNs = 86'400'000'000'000;
-constexpr double kRad = std::numbers::pi / 180.0;
-
-// Decimal year of a UTC instant (for the WMM; a day's resolution is plenty).
-double decimalYearOf(std::int64_t utc_ns) {
-  using namespace std::chrono;
-  const sys_days day = floor<days>(sys_time<nanoseconds>(nanoseconds(utc_ns)));
-  const year_month_day ymd(day);
-  return core::decimalYear(static_cast<int>(ymd.year()), static_cast<int>(static_cast<unsigned>(ymd.month())),
-                           static_cast<int>(static_cast<unsigned>(ymd.day())));
-}
-
-core::GpsObservation toObservation(const nmea::Fix& fix, std::int64_t t_ns) {
-  core::GpsObservation o;
-  o.t_ns = t_ns;
-  o.fix_ok = fix.position && fix.mode && *fix.mode != nmea::FixMode::kNoFix;
-  if (fix.position) {
-    o.position = core::GeodeticPosition{fix.position->lat_deg, fix.position->lon_deg,
-                                        (fix.alt_msl_m.value_or(0.0) + fix.geoid_separation_m.value_or(0.0)) * 1e-3};
-  }
-  if (fix.utc_ns) o.decimal_year = decimalYearOf(*fix.utc_ns);
-  if (fix.course_deg) o.course_rad = *fix.course_deg * kRad;
-  o.speed_mps = fix.speed_mps;
-  o.hdop = fix.hdop;
-  if (fix.magvar_deg) o.magvar_rad = *fix.magvar_deg * kRad;
-  return o;
-}
 
 }  // namespace
 
@@ -68,7 +40,7 @@ NmeaEpochs readNmeaEpochs(const std::string& path, double first_epoch_t_s) {
     if (!first_tod) first_tod = tod;
     if (previous_tod && tod < *previous_tod - kDayNs / 2) day_offset_ns += kDayNs;  // midnight
     previous_tod = tod;
-    result.epochs.push_back(toObservation(fix, first_epoch_ns + tod + day_offset_ns - *first_tod));
+    result.epochs.push_back(gpsObservationFromFix(fix, first_epoch_ns + tod + day_offset_ns - *first_tod));
   }
   return result;
 }

@@ -48,6 +48,7 @@ class CanImuSource final : public Source {
   can::DbcDatabase dbc_;
   std::unique_ptr<can::ImuFrameCodec> codec_;
   std::unique_ptr<can::EpochAssembler> assembler_;
+  std::int64_t flush_age_ns_ = 0;  // can_epoch_flush.hpp
   boost::asio::io_context io_;
   std::optional<boost::asio::executor_work_guard<boost::asio::io_context::executor_type>> work_;
   std::unique_ptr<can::SocketCanReceiver> receiver_;

@@ -42,6 +42,31 @@ struct ImuCsvSourceConfig {
   bool monotonic_time = false;
 };
 
+// [playback]: the pace shared by the log file sources [candump_log] and [nmea_log], so that
+// both play on one clock: log time t is played at start + (t - t0) / speed, where t0 is the
+// earliest first timestamp of the logs.
+struct PlaybackConfig {
+  double speed = 1.0;          // 1 = real time; the estimator sees the logs' own timestamps at any speed
+  double start_delay_s = 0.0;  // wait this long after start before the first frame or sentence
+  AtEnd at_end = AtEnd::kStay;  // kStay or kExit ("loop" is for [imu_csv] only)
+};
+
+// [candump_log]: a `candump -l` log (plain or gzip) decoded like the live [can] source.
+struct CandumpLogSourceConfig {
+  bool enabled = false;
+  std::string path;             // the log
+  std::string can_config_path;  // a TOML file with a [can] table (DBC, signal mapping, counters, epoch window)
+};
+
+// [nmea_log]: an NMEA 0183 log (plain text) played by drivers/nmea's NmeaLogPlayer.
+struct NmeaLogSourceConfig {
+  bool enabled = false;
+  std::string path;
+  // Added to the sentences' UTC to put the epochs on the candump log's clock (a recorder
+  // whose wall clock was off by this much).
+  double time_offset_s = 0.0;
+};
+
 struct RealtimeConfig {
   int sched_fifo_priority = 0;     // 0 = normal scheduling; 1..99 = SCHED_FIFO for the estimator thread
   std::vector<int> cpu_affinity;   // empty = any CPU
@@ -83,6 +108,9 @@ struct DaemonConfig {
   LogConfig log;
   core::EstimatorParams estimator;
   ImuCsvSourceConfig imu_csv;
+  PlaybackConfig playback;
+  CandumpLogSourceConfig candump_log;
+  NmeaLogSourceConfig nmea_log;
 
   // [can] and [gps], read by the drivers' own loaders (drivers/can can_config.hpp,
   // drivers/nmea serial_gps_config.hpp); whether they were present.
@@ -93,6 +121,9 @@ struct DaemonConfig {
 #endif
 #ifdef HEADINGD_WITH_GPS_SERIAL
   std::optional<nmea::SerialGpsConfig> gps;  // absent, or present with enabled = false: no GPS source
+#endif
+#ifdef HEADINGD_WITH_CAN
+  std::optional<can::CanConfig> candump_log_can;  // [candump_log] can_config, when enabled
 #endif
 };
 

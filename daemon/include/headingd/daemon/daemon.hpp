@@ -10,6 +10,7 @@
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/estimator_loop.hpp"
 #include "headingd/daemon/lcm_publisher.hpp"
+#include "headingd/daemon/playback_clock.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
@@ -38,10 +39,13 @@ class Daemon {
   LoopSummary summary() const;
 
  private:
+  void addLogSources();  // [candump_log], [nmea_log]
+
   DaemonConfig config_;
   std::unique_ptr<core::WorldMagneticModel> wmm_;
   std::vector<std::unique_ptr<SampleRing<ImuRingEntry>>> imu_rings_;
   std::vector<std::unique_ptr<SampleRing<GpsRingEntry>>> gps_rings_;
+  PlaybackClock playback_clock_;  // shared by the log sources; before them, so it outlives them
   std::vector<std::unique_ptr<Source>> sources_;
   SystemdNotifier notifier_;
   std::unique_ptr<LcmPublisher> publisher_;

@@ -52,8 +52,8 @@ class EstimatorLoop {
                 std::vector<SampleRing<ImuRingEntry>*> imu_rings, std::vector<SampleRing<GpsRingEntry>*> gps_rings,
                 std::vector<Source*> sources, LcmPublisher& publisher, SystemdNotifier& notifier);
 
-  // Runs ticks on the calling thread until stop() or until every source that asked for it
-  // has finished and its data is processed (at_end = "exit").
+  // Runs ticks on the calling thread until stop() or until a source asked for it (at_end =
+  // "exit"), no file source is playing any more and their data is processed.
   void run();
   void stop() { stop_requested_.store(true); }
   bool finished() const { return finished_.load(); }
@@ -63,7 +63,7 @@ class EstimatorLoop {
   LoopSummary summary() const;
 
  private:
-  void tick(std::int64_t wake_ns);
+  void tick(std::int64_t wake_ns, bool last_tick);
   void processImu(const ImuRingEntry& e, std::int64_t utime_us);
   void processGps(const GpsRingEntry& e, std::int64_t utime_us);
   void publishEstimate(std::int64_t now_ns, std::int64_t utime_us);

@@ -34,6 +34,7 @@ class ImuCsvSource final : public Source {
   void start() override;
   void stop() override;
   void report(SourceReport& out) const override;
+  bool playing() const override { return state_.load() != SourceState::kFinished; }
   bool wantsExit() const override { return wants_exit_.load(); }
 
   std::size_t imuSampleCount() const { return imu_.size(); }

@@ -49,6 +49,9 @@ class Source {
   // True once the source has finished and asks the daemon to stop (a file played to the
   // end with at_end = "exit").
   virtual bool wantsExit() const { return false; }
+  // True while a file source still has data to play. The daemon stops for a source that
+  // wants to exit only once no file source is playing any more.
+  virtual bool playing() const { return false; }
 };
 
 }  // namespace headingd::daemon

@@ -1,16 +1,16 @@
-#include "headingd/daemon/gps_fix_observation.hpp"
+#include "headingd/replay/gps_observation_from_fix.hpp"
 
 #include <chrono>
 #include <numbers>
 
 #include "headingd/core/wmm.hpp"
 
-namespace headingd::daemon {
+namespace headingd::replay {
 namespace {
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
-// Decimal year of the fix's UTC date, for the magnetic model (a day's resolution is plenty).
+// Decimal year of a UTC instant, for the magnetic model (a day's resolution is plenty).
 double decimalYearOfUtc(std::int64_t utc_ns) {
   using namespace std::chrono;
   const year_month_day date(floor<days>(sys_time<nanoseconds>(nanoseconds(utc_ns))));
@@ -37,4 +37,4 @@ core::GpsObservation gpsObservationFromFix(const nmea::Fix& fix, std::int64_t t_
   return o;
 }
 
-}  // namespace headingd::daemon
+}  // namespace headingd::replay

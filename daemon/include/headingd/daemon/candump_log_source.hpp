@@ -1,0 +1,87 @@
+#pragma once
+// A `candump -l` log as the IMU source: drivers/can's CandumpReader reads the frames (plain or
+// gzip), the same DBC codec and epoch assembler as the live CAN source turn them into
+// samples, which go into the IMU ring at the pace of the log's own timestamps
+// (playback_clock.hpp), on an Asio steady_timer of the source's own thread.
+//
+// Sensor time: a sample's t_ns is the log's timestamp of its epoch's first frame (the
+// recorder's CLOCK_REALTIME, as a live source's kernel timestamp before the daemon maps it to
+// the monotonic clock), so the estimator sees the recorded timing at any speed. Arrival time:
+// the monotonic time that frame was due. The open epoch is flushed on the log's time axis
+// (before each frame, at that frame's time; can_epoch_flush.hpp), so the samples do not
+// depend on how late the timer fired.
+#include <atomic>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "headingd/can/can_config.hpp"
+#include "headingd/can/can_frame.hpp"
+#include "headingd/can/candump_log.hpp"
+#include "headingd/can/dbc.hpp"
+#include "headingd/can/epoch_assembler.hpp"
+#include "headingd/can/imu_frame_codec.hpp"
+#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/playback_clock.hpp"
+#include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/sample_ring.hpp"
+#include "headingd/daemon/source.hpp"
+
+namespace headingd::daemon {
+
+class CandumpLogSource final : public Source {
+ public:
+  // Reads the DBC file and the whole log (throws core::ConfigError for the DBC and mapping,
+  // replay::CsvError when the log cannot be read). Lines that are not frames are counted.
+  CandumpLogSource(std::string name, const CandumpLogSourceConfig& config, const can::CanConfig& can_config,
+                   AtEnd at_end, const PlaybackClock* clock, std::uint16_t source_index,
+                   SampleRing<ImuRingEntry>* imu_ring);
+  ~CandumpLogSource() override;
+
+  const std::string& name() const override { return name_; }
+  const char* kind() const override { return "candump_log"; }
+  void start() override;
+  void stop() override;
+  void report(SourceReport& out) const override;
+  bool wantsExit() const override { return finished_.load() && at_end_ == AtEnd::kExit; }
+  bool playing() const override { return !finished_.load(); }
+
+  // Timestamp of the log's first frame (its own clock), nullopt for a log without frames.
+  std::optional<std::int64_t> firstLogNs() const;
+  std::size_t frameCount() const { return frames_.size(); }
+  const can::CandumpCounters& readerCounters() const { return reader_counters_; }
+
+ private:
+  void playDue();  // on the io thread: every frame due by now, then the timer for the next
+  void pushSamples(const can::AssembledSamples& samples);
+  void finish();
+
+  std::string name_;
+  AtEnd at_end_;
+  const PlaybackClock* clock_;
+  std::uint16_t source_index_;
+  SampleRing<ImuRingEntry>* ring_;
+  can::CanConfig can_config_;
+  can::DbcDatabase dbc_;
+  std::unique_ptr<can::ImuFrameCodec> codec_;
+  std::unique_ptr<can::EpochAssembler> assembler_;
+  std::int64_t flush_age_ns_ = 0;
+  std::vector<can::CanFrame> frames_;
+  can::CandumpCounters reader_counters_;
+  std::size_t next_frame_ = 0;
+
+  boost::asio::io_context io_;
+  boost::asio::steady_timer timer_;
+  std::thread thread_;
+  std::atomic<bool> finished_{false};
+  std::atomic<std::uint64_t> frames_played_{0}, pushed_{0}, dropped_{0};
+  mutable std::mutex snapshot_mutex_;
+  can::AssemblerCounters snapshot_;
+};
+
+}  // namespace headingd::daemon

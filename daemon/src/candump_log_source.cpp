@@ -1,0 +1,123 @@
+#include "headingd/daemon/candump_log_source.hpp"
+
+#include <chrono>
+#include <spdlog/spdlog.h>
+#include <sstream>
+
+#include "headingd/daemon/can_assembler_report.hpp"
+#include "headingd/daemon/can_epoch_flush.hpp"
+#include "headingd/daemon/clocks.hpp"
+#include "headingd/replay/numeric_csv.hpp"
+
+namespace headingd::daemon {
+
+CandumpLogSource::CandumpLogSource(std::string name, const CandumpLogSourceConfig& config,
+                                   const can::CanConfig& can_config, AtEnd at_end, const PlaybackClock* clock,
+                                   std::uint16_t source_index, SampleRing<ImuRingEntry>* imu_ring)
+    : name_(std::move(name)),
+      at_end_(at_end),
+      clock_(clock),
+      source_index_(source_index),
+      ring_(imu_ring),
+      can_config_(can_config),
+      dbc_(can::loadDbcFile(can_config.dbc_path)),
+      timer_(io_) {
+  codec_ = std::make_unique<can::ImuFrameCodec>(can_config_, dbc_);
+  assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(can_config_));
+  flush_age_ns_ = epochFlushAgeNs(can_config_, *codec_);
+  {
+    // Read whole (a 10 min, 100 Hz log is ~10 MB of text, ~6 MB of frames) so that playing
+    // never touches the disk and --check-config sees every line.
+    std::istringstream text(replay::readMaybeGzipFile(config.path));
+    can::CandumpReader reader(text);
+    while (const std::optional<can::CanFrame> frame = reader.next()) frames_.push_back(*frame);
+    reader_counters_ = reader.counters();
+  }
+  if (reader_counters_.bad_lines > 0) {
+    spdlog::warn("{}: {} line(s) are not candump frames and are skipped; the first, line {}: {}", config.path,
+                 reader_counters_.bad_lines, reader_counters_.first_bad_line, reader_counters_.first_bad_reason);
+  }
+}
+
+CandumpLogSource::~CandumpLogSource() { stop(); }
+
+std::optional<std::int64_t> CandumpLogSource::firstLogNs() const {
+  if (frames_.empty()) return std::nullopt;
+  return frames_.front().kernel_time_ns;
+}
+
+void CandumpLogSource::pushSamples(const can::AssembledSamples& samples) {
+  for (int i = 0; i < samples.count; ++i) {
+    ImuRingEntry e;
+    e.sample = samples.samples[static_cast<std::size_t>(i)];
+    e.arrival_mono_ns = clock_->dueMonoNs(e.sample.t_ns);
+    e.source_index = source_index_;
+    (ring_->push(e) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+void CandumpLogSource::finish() {
+  pushSamples(assembler_->finish());
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    snapshot_ = assembler_->counters();
+  }
+  finished_.store(true);
+}
+
+void CandumpLogSource::playDue() {
+  const std::int64_t now = monotonicNs();
+  while (next_frame_ < frames_.size() && clock_->dueMonoNs(frames_[next_frame_].kernel_time_ns) <= now) {
+    const can::CanFrame& frame = frames_[next_frame_++];
+    // The flush on the log's own time: what a receiver with perfect timing would have seen.
+    pushSamples(flushEpoch(*assembler_, can_config_, flush_age_ns_, frame.kernel_time_ns));
+    pushSamples(assembler_->push(frame));
+    frames_played_.fetch_add(1, std::memory_order_relaxed);
+  }
+  if (next_frame_ == frames_.size()) {
+    finish();
+    return;
+  }
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    snapshot_ = assembler_->counters();
+  }
+  // steady_clock is CLOCK_MONOTONIC on Linux: absolute deadlines, no drift.
+  timer_.expires_at(std::chrono::steady_clock::time_point(
+      std::chrono::nanoseconds(clock_->dueMonoNs(frames_[next_frame_].kernel_time_ns))));
+  timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) playDue();
+  });
+}
+
+void CandumpLogSource::start() {
+  if (thread_.joinable()) return;
+  // The io_context runs out of work (and the thread ends) when the log is played.
+  timer_.expires_at(std::chrono::steady_clock::time_point(std::chrono::nanoseconds(clock_->start_mono_ns)));
+  timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) playDue();
+  });
+  thread_ = std::thread([this] { io_.run(); });
+}
+
+void CandumpLogSource::stop() {
+  if (!thread_.joinable()) return;
+  io_.stop();
+  thread_.join();
+}
+
+void CandumpLogSource::report(SourceReport& out) const {
+  const bool finished = finished_.load();
+  out.state = finished ? SourceState::kFinished : SourceState::kRunning;
+  out.last_error.clear();
+  std::size_t i = 0;
+  out.set(i++, "frames_in_log", frames_.size());
+  out.set(i++, "frames_played", frames_played_.load(std::memory_order_relaxed));
+  out.set(i++, "log_bad_lines", reader_counters_.bad_lines);
+  out.set(i++, "samples_pushed", pushed_.load(std::memory_order_relaxed));
+  out.set(i++, "ring_full_drops", dropped_.load(std::memory_order_relaxed));
+  std::lock_guard lock(snapshot_mutex_);
+  reportAssemblerCounters(out, &i, snapshot_);
+}
+
+}  // namespace headingd::daemon

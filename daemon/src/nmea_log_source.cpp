@@ -1,0 +1,143 @@
+#include "headingd/daemon/nmea_log_source.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "headingd/nmea/comment_filter.hpp"
+#include "headingd/nmea/parser.hpp"
+#include "headingd/replay/gps_observation_from_fix.hpp"
+#include "headingd/replay/numeric_csv.hpp"
+
+namespace headingd::daemon {
+namespace {
+
+// How often the player's counters are copied for STATUS.
+constexpr auto kSnapshotPeriod = std::chrono::milliseconds(250);
+
+std::chrono::steady_clock::time_point steadyAt(std::int64_t mono_ns) {
+  return std::chrono::steady_clock::time_point(std::chrono::nanoseconds(mono_ns));
+}
+
+}  // namespace
+
+NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config, const PlaybackConfig& playback,
+                             const PlaybackClock* clock, std::uint16_t source_index,
+                             SampleRing<GpsRingEntry>* gps_ring)
+    : name_(std::move(name)),
+      at_end_(playback.at_end),
+      clock_(clock),
+      source_index_(source_index),
+      ring_(gps_ring),
+      offset_ns_(std::llround(config.time_offset_s * 1e9)),
+      start_timer_(io_),
+      snapshot_timer_(io_) {
+  nmea::NmeaLogPlayerConfig player;
+  player.path = config.path;
+  player.speed = playback.speed;
+  // Gaps in the log (no fix indoors) are played as they are: shortened, they would put the
+  // player ahead of the candump log it was recorded beside.
+  player.max_gap_s = 86400.0;
+  player_ = std::make_unique<nmea::NmeaLogPlayer>(
+      io_, player, [this](const nmea::Fix& fix, std::int64_t receive_ns) { onFix(fix, receive_ns); },
+      nmea::LineHandler{}, [this] { onFinished(); });
+
+  // The first epoch's time and the first date, from the parser's view of the whole log.
+  const std::string text = replay::readMaybeGzipFile(config.path);
+  std::vector<std::uint8_t> bytes;
+  nmea::CommentFilter comments;
+  comments.filter({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, bytes);
+  nmea::Parser parser;
+  std::vector<nmea::FixUpdate> updates;
+  parser.feed(std::span<const std::uint8_t>(bytes), updates);
+  parser.finish();
+  std::optional<std::int64_t> previous_tod;
+  for (const nmea::FixUpdate& u : updates) {
+    if (u.fix.utc_ns && u.fix.time_of_day_ns && first_day_ns_ == 0) first_day_ns_ = *u.fix.utc_ns - *u.fix.time_of_day_ns;
+    if (u.fix.time_of_day_ns && u.fix.time_of_day_ns != previous_tod) {
+      ++epochs_in_log_;
+      previous_tod = u.fix.time_of_day_ns;
+    }
+  }
+  NmeaLogTime log_time(offset_ns_, first_day_ns_);
+  for (const nmea::FixUpdate& u : updates) {
+    if (const std::optional<std::int64_t> t = log_time.of(u.fix)) {
+      first_log_ns_ = t;
+      break;
+    }
+  }
+}
+
+NmeaLogSource::~NmeaLogSource() { stop(); }
+
+void NmeaLogSource::onFix(const nmea::Fix& fix, std::int64_t receive_ns) {
+  std::optional<std::int64_t> t = log_time_->of(fix);
+  if (!t) {
+    // No time of fix: placed where the log clock stands now.
+    untimed_.fetch_add(1, std::memory_order_relaxed);
+    t = clock_->logNsAt(receive_ns);
+  }
+  GpsRingEntry e;
+  e.observation = replay::gpsObservationFromFix(fix, *t);
+  e.arrival_mono_ns = receive_ns;
+  e.source_index = source_index_;
+  (ring_->push(e) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);
+}
+
+void NmeaLogSource::onFinished() {
+  snapshot_timer_.cancel();
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    snapshot_ = player_->counters();
+  }
+  finished_.store(true);
+}
+
+void NmeaLogSource::snapshotCounters() {
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    snapshot_ = player_->counters();
+  }
+  snapshot_timer_.expires_after(kSnapshotPeriod);
+  snapshot_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec && !finished_.load()) snapshotCounters();
+  });
+}
+
+void NmeaLogSource::start() {
+  if (thread_.joinable()) return;
+  log_time_.emplace(offset_ns_, first_day_ns_);
+  // The player feeds its first group at once: start it when the log clock reaches it.
+  const std::int64_t due = first_log_ns_ ? clock_->dueMonoNs(*first_log_ns_) : clock_->start_mono_ns;
+  start_timer_.expires_at(steadyAt(due));
+  start_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) player_->start();
+  });
+  snapshotCounters();
+  thread_ = std::thread([this] { io_.run(); });
+}
+
+void NmeaLogSource::stop() {
+  if (!thread_.joinable()) return;
+  io_.stop();
+  thread_.join();
+}
+
+void NmeaLogSource::report(SourceReport& out) const {
+  out.state = finished_.load() ? SourceState::kFinished : SourceState::kRunning;
+  out.last_error.clear();
+  std::lock_guard lock(snapshot_mutex_);
+  const nmea::NmeaLogPlayerCounters& c = snapshot_;
+  std::size_t i = 0;
+  out.set(i++, "epochs_in_log", epochs_in_log_);
+  out.set(i++, "epochs", c.epochs.epochs);
+  out.set(i++, "epochs_pushed", pushed_.load(std::memory_order_relaxed));
+  out.set(i++, "ring_full_drops", dropped_.load(std::memory_order_relaxed));
+  out.set(i++, "epochs_without_time", untimed_.load(std::memory_order_relaxed));
+  out.set(i++, "late_sentences", c.epochs.late_sentences);
+  out.set(i++, "groups_played", c.groups_played);
+  out.set(i++, "backward_steps", c.backward_steps);
+  nmea::forEachCounter(c.parser, [&](const char* name, std::uint64_t v) { out.set(i++, "nmea_", name, v); });
+}
+
+}  // namespace headingd::daemon

@@ -1,0 +1,61 @@
+#pragma once
+// For the tests that drive the daemon's CAN source on vcan0 (run through vm-run.sh): the
+// shipped [can] table of headingd's own frame set pointed at vcan0, and an IMU CSV turned into
+// a candump log of those frames that canplayer plays onto the bus.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <regex>
+#include <string>
+#include <thread>
+
+#include "daemon_test_support.hpp"
+#include "headingd/source_status_t.hpp"
+
+namespace headingd::daemon::test {
+
+// config/can-headingd.toml with interface vcan0 and an absolute DBC path; epoch_window_s stays
+// as shipped (with counters the daemon's flush waits longer, daemon/src can_epoch_flush.hpp).
+inline std::string vcanCanTable(const std::string& config_dir) {
+  std::string table = readFile(config_dir + "/can-headingd.toml");
+  table = std::regex_replace(table, std::regex("dbc = \"dbc/"), "dbc = \"" + config_dir + "/dbc/");
+  return std::regex_replace(table, std::regex("interface = \"can0\""), "interface = \"vcan0\"");
+}
+
+// Writes `can_table` into dir/can.toml and `imu_csv` as dir/imu.log, a candump -l log.
+inline void writeCandumpLog(const TempDir& dir, const std::string& candump_from_csv_bin, const std::string& can_table,
+                            const std::string& imu_csv) {
+  dir.write("can.toml", can_table);
+  const std::string command = candump_from_csv_bin + " --imu-csv " + imu_csv + " --can-config " +
+                              dir.file("can.toml") + " --out " + dir.file("imu.log") + " >/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+// A source's counter on STATUS by name, -1 when it has none.
+inline std::int64_t counter(const headingd::source_status_t& s, const std::string& name) {
+  for (const auto& c : s.counters) {
+    if (c.name == name) return c.value;
+  }
+  return -1;
+}
+
+// After canplayer has played the log: waits for the last samples and one more STATUS, stops
+// the daemon with SIGTERM (it must exit 0 within `stop_timeout`), stops the subscriber and
+// prints the daemon's summary line. Returns the daemon's log.
+template <class Collector>
+std::string finishVcanRun(const TempDir& dir, ChildProcess& daemon, Collector& lcm,
+                          std::chrono::milliseconds stop_timeout) {
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.waitFor(stop_timeout), 0) << readFile(dir.file("err"));
+  lcm.stop();
+  const std::string log = readFile(dir.file("err"));
+  const std::size_t summary = log.rfind("summary");
+  std::fprintf(stderr, "%s", log.substr(summary == std::string::npos ? 0 : summary).c_str());
+  return log;
+}
+
+}  // namespace headingd::daemon::test
