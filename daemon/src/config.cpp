@@ -103,6 +103,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   c.status_period_s = daemon.number("status_period_s", c.status_period_s, 0.1, 60.0, "s");
   c.console_status = daemon.boolean("console_status", c.console_status);
   c.wmm_path = daemon.path("wmm", c.wmm_path, base_dir, true);
+  c.calibration_path = daemon.path("calibration", c.calibration_path, base_dir, true);
   daemon.rejectUnknownKeys();
 
   TomlTableReader log(doc["log"].as_table(), source, "log");

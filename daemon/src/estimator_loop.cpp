@@ -9,11 +9,20 @@
 #include <time.h>
 #include <tuple>
 
+#include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/daemon/clocks.hpp"
+#include "headingd/replay/numeric_csv.hpp"
 #include "headingd/daemon/realtime.hpp"
 
 namespace headingd::daemon {
 namespace {
+
+// [daemon] calibration: identity when none is configured; a bad file throws (start-up stops).
+core::ImuCorrection loadCalibration(const std::string& path) {
+  if (path.empty()) return core::ImuCorrection{};
+  return core::ImuCorrection(core::parseImuCalibration(replay::readMaybeGzipFile(path), path));
+}
+
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
@@ -45,6 +54,7 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
                              LcmPublisher& publisher, SystemdNotifier& notifier)
     : config_(config),
       pipeline_(config.estimator, wmm),
+      correction_(loadCalibration(config.calibration_path)),
       imu_rings_(std::move(imu_rings)),
       gps_rings_(std::move(gps_rings)),
       sources_(std::move(sources)),
@@ -193,7 +203,10 @@ void EstimatorLoop::tick(std::int64_t wake_ns, bool last_tick) {
   if (now - last_status_ns_ >= status_period_ns_ || last_tick) publishStatus(now, utime_us);
 }
 
-void EstimatorLoop::processImu(const ImuRingEntry& e, std::int64_t utime_us) {
+void EstimatorLoop::processImu(const ImuRingEntry& raw, std::int64_t utime_us) {
+  // The calibrated sample is what the estimator sees and what IMU publishes.
+  ImuRingEntry e = raw;
+  e.sample = correction_.apply(raw.sample);
   const core::SampleVerdict verdict = pipeline_.process(e.sample);
   last_any_imu_arrival_ns_ = std::max(last_any_imu_arrival_ns_, e.arrival_mono_ns);
   if (gateUsed(verdict)) {
@@ -372,10 +385,18 @@ void EstimatorLoop::publishStatus(std::int64_t now_ns, std::int64_t utime_us) {
 }
 
 void EstimatorLoop::reloadCalibration() {
-  // Hook for the calibration suite (DESIGN.md roadmap step 4): when the configuration names
-  // calibration files, re-read them here and hand the new values to the pipeline between
-  // two samples. Until then there is nothing to reload.
-  spdlog::info("SIGHUP: calibration reload requested; no calibration is configured yet, nothing to reload");
+  // Between two ticks, so no sample sees half of each calibration. A file that no longer
+  // reads keeps the calibration in use: a typo must not turn it off in the field.
+  if (config_.calibration_path.empty()) {
+    spdlog::info("SIGHUP: no [daemon] calibration configured, nothing to reload");
+    return;
+  }
+  try {
+    correction_ = loadCalibration(config_.calibration_path);
+    spdlog::info("SIGHUP: calibration reloaded from {}", config_.calibration_path);
+  } catch (const std::exception& e) {
+    spdlog::error("SIGHUP: calibration not reloaded, keeping the one in use: {}", e.what());
+  }
 }
 
 LoopSummary EstimatorLoop::summary() const {

@@ -99,6 +99,7 @@ struct DaemonConfig {
   double status_period_s = 1.0;
   bool console_status = false;  // one status line per status period on stdout
   std::string wmm_path;         // World Magnetic Model coefficients ("" = none)
+  std::string calibration_path; // IMU calibration (headingd-calibrate --out; "" = none), re-read on SIGHUP
   // [rings]
   std::size_t imu_ring_capacity = 4096;
   std::size_t gps_ring_capacity = 64;

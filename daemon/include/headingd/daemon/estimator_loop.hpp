@@ -18,6 +18,7 @@
 
 #include "headingd/attitude_t.hpp"
 #include "headingd/core/heading_pipeline.hpp"
+#include "headingd/core/imu_calibration.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/latency_histogram.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
@@ -76,6 +77,7 @@ class EstimatorLoop {
 
   const DaemonConfig& config_;
   core::HeadingPipeline pipeline_;
+  core::ImuCorrection correction_;  // [daemon] calibration, applied to every sample
   std::vector<SampleRing<ImuRingEntry>*> imu_rings_;
   std::vector<SampleRing<GpsRingEntry>*> gps_rings_;
   std::vector<Source*> sources_;
