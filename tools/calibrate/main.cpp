@@ -2,7 +2,8 @@
 // headingd-replay --calib and the daemon apply. Methods:
 //   thesis     Henriksson (2013) §2.8: six static faces (accelerometer, magnetometer by
 //              Newton's method), gyroscope bias at rest and scale from whole turns
-//   ellipsoid  Kok & Schön (2016) §6.1 ellipsoid fit (D up to a rotation: the symmetric one)
+//   ellipsoid  Kok & Schön (2016) Algorithm 1 step 1: ellipsoid fit (§6.1), then the
+//              misalignment to the inertial axes and the dip (§6.2, eqs. 26-28)
 //   ml         Kok & Schön Algorithm 1, maximum likelihood through the EKF predictor
 // Exit codes: 0 written, 1 file error, 2 bad arguments, 3 the data cannot give a calibration.
 #include <CLI/CLI.hpp>
@@ -173,26 +174,45 @@ int main(int argc, char** argv) {
     };
 
     if (method == "ellipsoid") {
-      progress("ellipsoid fit of %zu magnetometer samples (Kok & Schon sec. 6.1)", mags.size());
-      calib::EllipsoidFit fit = calib::fitEllipsoid(mags, field.norm_uT.value_or(1.0));
+      // The fit alone gives D only up to a rotation (K&S eq. 25); the misalignment step
+      // (§6.2) turns it onto the inertial axes with the vertical from the gyro and
+      // accelerometer, so that headings from D⁻¹(y - o) are right, not just |m_b|.
+      calib::MlInitialOptions o;
+      o.ellipsoid_min_coverage = calib::EllipsoidFitOptions{}.min_coverage;
       if (!field.norm_uT) {  // from the data: D of unit determinant
-        const double f = std::cbrt(fit.D.determinant());
-        fit.D /= f;
-        fit.field_norm_uT = f;
-        fit.residual_rms_uT *= f;
+        const auto pre = calib::fitEllipsoid(mags, 1.0);
+        field.norm_uT = std::cbrt(pre.D.determinant());
         field.detail = "scaled so that det D = 1 (no --field-uT or WMM place given)";
       }
-      cal.mag.D = fit.D;
-      cal.mag.offset_uT = fit.offset_uT;
-      cal.mag.field_norm_uT = fit.field_norm_uT;
-      cal.provenance.residual_rms_uT = fit.residual_rms_uT;
-      cal.provenance.coverage = fit.coverage;
-      cal.provenance.condition_number = fit.condition_number;
-      report.coverage = fit.coverage;
-      report.condition_number = fit.condition_number;
-      progress("coverage %.0f %%, residual %.2f uT rms, condition %.0f", 100 * fit.coverage, fit.residual_rms_uT,
-               fit.condition_number);
-      report.residuals = radialResiduals(restSigmaCalibrated(fit.residual_rms_uT));
+      o.field_norm_uT = *field.norm_uT;
+      if (!segments.empty()) {
+        o.stationary_begin = segments.front().begin;
+        o.stationary_count = std::min<std::size_t>(segments.front().size(), 500);
+      } else {
+        // No rest found: the noise floors of MlInitialOptions carry the inclination EKF.
+        o.stationary_count = std::min<std::size_t>(samples.size(), 100);
+        report.notes.push_back("no static segment: gyro bias 0 assumed for the misalignment step");
+      }
+      progress("ellipsoid fit of %zu magnetometer samples and misalignment to the inertial axes (Kok & Schon "
+               "sec. 6.1-6.2)", mags.size());
+      const calib::MlInitialEstimate init = calib::estimateInitialParameters(samples, o);
+      cal.mag.D = init.D;
+      cal.mag.offset_uT = init.offset_uT;
+      cal.mag.field_norm_uT = *field.norm_uT;
+      cal.mag.dip_rad = init.dip_rad;
+      cal.provenance.residual_rms_uT = init.ellipsoid_residual_rms_uT;
+      cal.provenance.coverage = init.ellipsoid_coverage;
+      cal.provenance.condition_number = init.ellipsoid_condition_number;
+      report.coverage = init.ellipsoid_coverage;
+      report.condition_number = init.ellipsoid_condition_number;
+      const Eigen::AngleAxisd misalignment(init.misalignment);
+      progress("coverage %.0f %%, residual %.2f uT rms, condition %.0f; misalignment %.2f deg, dip %.2f deg",
+               100 * init.ellipsoid_coverage, init.ellipsoid_residual_rms_uT, init.ellipsoid_condition_number,
+               misalignment.angle() / kDeg, init.dip_rad / kDeg);
+      report.notes.push_back(describe("misalignment to the inertial axes %.2f deg (K&S eq. 27, rms residual %.4f)",
+                                      misalignment.angle() / kDeg, init.misalignment_rms, ""));
+      const double fit_residual = init.ellipsoid_residual_rms_uT;
+      report.residuals = radialResiduals(restSigmaCalibrated(fit_residual));
       report.residual_kind = "(|m_b| - F) / sigma, sigma the magnetometer noise at rest";
     } else if (method == "thesis") {
       if (!field.norm_uT) throw calib::CalibrationError("thesis: the field norm is needed: give --field-uT or --lat/--lon/--date");

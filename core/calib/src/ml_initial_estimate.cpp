@@ -51,11 +51,13 @@ MlInitialEstimate estimateInitialParameters(std::span<const core::ImuSample> sam
   }
   EllipsoidFitOptions fit_options;
   fit_options.min_coverage = options.ellipsoid_min_coverage;
+  fit_options.sphere_weight = options.ellipsoid_sphere_weight;
   const EllipsoidFit fit = fitEllipsoid(mag, options.field_norm_uT, fit_options);
   out.ellipsoid_D = fit.D;
   out.offset_uT = fit.offset_uT;
   out.ellipsoid_coverage = fit.coverage;
   out.ellipsoid_residual_rms_uT = fit.residual_rms_uT;
+  out.ellipsoid_condition_number = fit.condition_number;
 
   // Step 1c: the vertical from the inertial-only EKF, the field on the fitted unit sphere.
   MlDataOptions data_options;

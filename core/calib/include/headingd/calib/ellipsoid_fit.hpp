@@ -39,6 +39,10 @@ struct EllipsoidFitOptions {
   // After the algebraic fit, minimise the field-norm error | |D⁻¹(y - o)| - |m| | itself
   // (Ceres, D⁻¹ upper triangular). Off: the paper's §6.1 estimate alone.
   bool geometric_refinement = true;
+  // Weight of the pull of the algebraic fit towards a sphere, used (×0.1, ×1, ×10, as
+  // little as works) only when eq. 23 alone gives an implausible ellipsoid: very flat or
+  // centred far from the data (ellipsoid_fit.cpp, plausibleQuadric). 0: never.
+  double sphere_weight = 1e-2;
 };
 
 // Throws CalibrationError for too few samples, non-finite values, rotations that do not

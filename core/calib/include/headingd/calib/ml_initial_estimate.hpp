@@ -25,6 +25,7 @@ struct MlInitialOptions {
   double gravity_m_s2 = 0.0;
   std::size_t initial_average_samples = 10;
   double ellipsoid_min_coverage = 0.25;
+  double ellipsoid_sphere_weight = 1e-2;  // EllipsoidFitOptions::sphere_weight
   // Floors for the σ taken from the stationary covariances: a quantised or ideal sensor can
   // give a zero variance, which no likelihood can start from.
   double min_gyro_sigma_rad_s = 1e-4;
@@ -46,6 +47,7 @@ struct MlInitialEstimate {
   double misalignment_rms = 0.0;   // of eq. 27, in field units
   double ellipsoid_coverage = 0.0;
   double ellipsoid_residual_rms_uT = 0.0;
+  double ellipsoid_condition_number = 0.0;
   double gravity_m_s2 = 9.81;
   double field_norm_uT = 50.0;
 };
