@@ -7,6 +7,7 @@
 
 #include "headingd/sim/gait.hpp"
 #include "headingd/sim/imu_model.hpp"
+#include "headingd/sim/trajectory.hpp"
 
 namespace headingd::sim {
 
@@ -101,23 +102,11 @@ Trajectory generateScriptedTrajectory(const Scenario& scenario, double rate_hz, 
     position[i] = centre + attitude[i] * script.lever_arm_body_m;
   }
 
-  Trajectory out;
-  out.rate_hz = rate_hz;
-  out.q_nb_before_start = attitude[0];
-  out.states.resize(rows);
-  for (std::size_t k = 0; k < rows; ++k) {
+  Trajectory out = kinematicTrajectory(scenario, rate_hz, attitude, position);
+  for (std::size_t k = 0; k < out.states.size(); ++k) {
     const std::size_t i = k + 1;
     TruthState& s = out.states[k];
-    s.t_s = static_cast<double>(k) * dt;
-    s.q_nb = attitude[i];
-    s.position_ned_m = position[i];
-    s.velocity_ned_mps = (position[i + 1] - position[i - 1]) / (2.0 * dt);
-    s.accel_ned_mps2 = (position[i + 1] - 2.0 * position[i] + position[i - 1]) / (dt * dt);
     s.path_heading_rad = core::eulerZyx(scripted[i]).yaw_rad;
-    const PhaseTime pt = phaseAt(scenario, s.t_s);
-    s.phase = pt.index;
-    s.activity = scenario.phases[pt.index].activity;
-    s.indoor = scenario.phases[pt.index].indoor;
     const double scripted_rate = rateBetween(scripted[i - 1], scripted[i + 1], 2.0 * dt).norm();
     s.moving = scripted_rate > script.moving_rate_deg_s * kDeg;
   }

@@ -71,6 +71,30 @@ PhaseState phaseState(const Scenario& s, double t) {
 
 }  // namespace
 
+Trajectory kinematicTrajectory(const Scenario& scenario, double rate_hz, const std::vector<Quat>& attitude,
+                               const std::vector<Vec3>& position) {
+  const double dt = 1.0 / rate_hz;
+  const std::size_t rows = attitude.size() - 2;
+  Trajectory out;
+  out.rate_hz = rate_hz;
+  out.q_nb_before_start = attitude[0];
+  out.states.resize(rows);
+  for (std::size_t k = 0; k < rows; ++k) {
+    const std::size_t i = k + 1;
+    TruthState& s = out.states[k];
+    s.t_s = static_cast<double>(k) * dt;
+    s.q_nb = attitude[i];
+    s.position_ned_m = position[i];
+    s.velocity_ned_mps = (position[i + 1] - position[i - 1]) / (2.0 * dt);
+    s.accel_ned_mps2 = (position[i + 1] - 2.0 * position[i] + position[i - 1]) / (dt * dt);
+    const PhaseTime pt = phaseAt(scenario, s.t_s);
+    s.phase = pt.index;
+    s.activity = scenario.phases[pt.index].activity;
+    s.indoor = scenario.phases[pt.index].indoor;
+  }
+  return out;
+}
+
 Trajectory generateTrajectory(const Scenario& scenario, double rate_hz, Rng rng) {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw std::invalid_argument("IMU rate must be positive");
   if (scenario.phases.empty()) throw std::invalid_argument("scenario has no phases");
@@ -132,23 +156,11 @@ Trajectory generateTrajectory(const Scenario& scenario, double rate_hz, Rng rng)
   const Vec3 origin(position[1].x(), position[1].y(), 0.0);
   for (Vec3& p : position) p -= origin;
 
-  Trajectory out;
-  out.rate_hz = rate_hz;
-  out.q_nb_before_start = attitude[0];
-  out.states.resize(rows);
-  for (std::size_t k = 0; k < rows; ++k) {
+  Trajectory out = kinematicTrajectory(scenario, rate_hz, attitude, position);
+  for (std::size_t k = 0; k < out.states.size(); ++k) {
     const std::size_t i = k + 1;
     TruthState& s = out.states[k];
-    s.t_s = static_cast<double>(k) * dt;
-    s.q_nb = attitude[i];
-    s.position_ned_m = position[i];
-    s.velocity_ned_mps = (position[i + 1] - position[i - 1]) / (2.0 * dt);
-    s.accel_ned_mps2 = (position[i + 1] - 2.0 * position[i] + position[i - 1]) / (dt * dt);
     s.path_heading_rad = path_heading[i];
-    const PhaseTime pt = phaseAt(scenario, s.t_s);
-    s.phase = pt.index;
-    s.activity = scenario.phases[pt.index].activity;
-    s.indoor = scenario.phases[pt.index].indoor;
     const double turn_rate = std::abs(core::wrapAngle(path_heading[i + 1] - path_heading[i - 1])) / (2.0 * dt);
     s.moving = phase_state[i].gait.speed_mps > 0.05 || turn_rate > 1.0 * kDeg || phase_state[i].changing_posture;
   }

@@ -40,6 +40,13 @@ struct Trajectory {
   core::Quat q_nb_before_start = core::Quat::Identity();
 };
 
+// The kinematic part of every row of a trajectory sampled at dt with one padding sample on
+// each side (attitude and position have rows + 2 entries): time, attitude, position, and
+// velocity and acceleration by central differences, plus the scenario's phase at that time.
+// path_heading_rad and moving are the generator's to set.
+Trajectory kinematicTrajectory(const Scenario& scenario, double rate_hz, const std::vector<core::Quat>& attitude,
+                               const std::vector<core::Vec3>& position);
+
 // `rng` gives the small person-to-person and step-to-step variations (speed and cadence
 // modulation, heading wander when walking "straight"). Throws std::invalid_argument for a
 // non-positive rate or an empty scenario.
