@@ -17,10 +17,10 @@
 namespace headingd::daemon {
 namespace {
 
-// [daemon] calibration: identity when none is configured; a bad file throws (start-up stops).
-core::ImuCorrection loadCalibration(const std::string& path) {
-  if (path.empty()) return core::ImuCorrection{};
-  return core::ImuCorrection(core::parseImuCalibration(replay::readMaybeGzipFile(path), path));
+// [daemon] calibration: none when none is configured; a bad file throws (start-up stops).
+core::CalibratedImuStream loadCalibration(const std::string& path) {
+  if (path.empty()) return core::CalibratedImuStream{};
+  return core::CalibratedImuStream(core::parseImuCalibration(replay::readMaybeGzipFile(path), path));
 }
 
 
@@ -207,6 +207,18 @@ void EstimatorLoop::processImu(const ImuRingEntry& raw, std::int64_t utime_us) {
   // The calibrated sample is what the estimator sees and what IMU publishes.
   ImuRingEntry e = raw;
   e.sample = correction_.apply(raw.sample);
+  if (correction_.magFit().calibrationInUse() != mag_calibration_in_use_) {
+    mag_calibration_in_use_ = correction_.magFit().calibrationInUse();
+    if (mag_calibration_in_use_) {
+      spdlog::info("magnetometer calibration fits again: applied");
+    } else {
+      const core::MagCalibrationFit& fit = correction_.magFit();
+      spdlog::warn("magnetometer calibration no longer fits the readings (field strength raw {:.1f} uT varying "
+                   "{:.1f} %, calibrated {:.1f} uT varying {:.1f} %): set aside, raw magnetometer used",
+                   fit.rawStrength(), 100.0 * fit.rawFluctuation(), fit.calibratedStrength(),
+                   100.0 * fit.calibratedFluctuation());
+    }
+  }
   const core::SampleVerdict verdict = pipeline_.process(e.sample);
   last_any_imu_arrival_ns_ = std::max(last_any_imu_arrival_ns_, e.arrival_mono_ns);
   if (gateUsed(verdict)) {
@@ -355,6 +367,8 @@ void EstimatorLoop::publishStatus(std::int64_t now_ns, std::int64_t utime_us) {
   setCounter(m.counters, i++, "mag_no_heading", c.mag_no_heading);
   setCounter(m.counters, i++, "mag_disturbed", c.mag_disturbed);
   setCounter(m.counters, i++, "mag_heading_restores", c.mag_heading_restores);
+  setCounter(m.counters, i++, "mag_calibration_set_aside", correction_.magFit().setAside());
+  setCounter(m.counters, i++, "mag_calibration_taken_back", correction_.magFit().takenBack());
   setCounter(m.counters, i++, "state_recoveries", c.state_recoveries);
   setCounter(m.counters, i++, "gps_epochs", gps_epochs_processed_);
   setCounter(m.counters, i++, "gps_epochs_used_for_declination", pipeline_.gpsEpochsUsedForDeclination());
@@ -393,6 +407,7 @@ void EstimatorLoop::reloadCalibration() {
   }
   try {
     correction_ = loadCalibration(config_.calibration_path);
+    mag_calibration_in_use_ = true;
     spdlog::info("SIGHUP: calibration reloaded from {}", config_.calibration_path);
   } catch (const std::exception& e) {
     spdlog::error("SIGHUP: calibration not reloaded, keeping the one in use: {}", e.what());

@@ -25,7 +25,8 @@ struct Limits {
   double inclination_deg;
 };
 
-// Measured 2026-11-25 with the default EstimatorParams: total / inclination RMSE.
+// Measured 2026-11-25 with the default EstimatorParams: total / inclination RMSE (32 and 34
+// re-measured 2026-11-26 after the ψ_g restore was turned on).
 const std::map<std::string, Limits> kLimits = {
     {"01_undisturbed_slow_rotation_A", {2.37, 0.73}},               // 2.06 / 0.63
     {"03_undisturbed_slow_rotation_C", {2.40, 0.51}},               // 2.08 / 0.44
@@ -39,8 +40,8 @@ const std::map<std::string, Limits> kLimits = {
     {"26_disturbed_phone_vibration_A", {1.96, 0.64}},               // 1.70 / 0.55
     {"28_disturbed_stationary_magnet_A", {3.56, 2.12}},             // 3.09 / 1.84
     {"30_disturbed_stationary_magnet_C", {2.09, 1.59}},             // 1.81 / 1.38
-    {"32_disturbed_attached_magnet_1cm", {3.43, 1.05}},             // 2.98 / 0.91
-    {"34_disturbed_attached_magnet_3cm", {4.72, 0.87}},             // 4.10 / 0.75
+    {"32_disturbed_attached_magnet_1cm", {1.78, 1.05}},             // 1.55 / 0.91
+    {"34_disturbed_attached_magnet_3cm", {4.13, 0.87}},             // 3.59 / 0.75
 };
 
 // VQF 9D on the same trials (../shared/data/broad/ANCHORS.md), total RMSE.

@@ -12,6 +12,7 @@
 
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
+#include "headingd/core/mag_calibration_fit.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/core/params_toml.hpp"
 #include "headingd/replay/imu_csv.hpp"
@@ -64,17 +65,21 @@ int main(int argc, char** argv) {
   std::string calib_path;
   app.add_option("--calib", calib_path,
                  "calibration TOML (headingd-calibrate --out): gyro bias/scale, accelerometer scale/bias and "
-                 "magnetometer D, offset are applied to every sample before the estimator");
+                 "magnetometer D, offset are applied to every sample before the estimator. The magnetometer "
+                 "part is set aside while it no longer fits (the calibrated field strength swings as the sensor "
+                 "turns and the raw one does not, e.g. the magnet it was made for is gone) and taken back when "
+                 "it fits again");
   app.add_option("--wmm", wmm_path, "World Magnetic Model coefficients (NOAA COF)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   try {
     const core::EstimatorParams params = loadParams(config);
     auto samples = replay::readImuCsv(imu_csv);
+    core::CalibratedImuStream calibration;
     if (!calib_path.empty()) {
-      const core::ImuCorrection correction(
+      calibration = core::CalibratedImuStream(
           core::parseImuCalibration(replay::readMaybeGzipFile(calib_path), calib_path));
-      for (auto& s : samples) s = correction.apply(s);
+      for (auto& s : samples) s = calibration.apply(s);
     }
     const bool with_gps = !nmea_path.empty();
     replay::NmeaEpochs gps;
@@ -127,6 +132,13 @@ int main(int argc, char** argv) {
     }
     if (std::fclose(f) != 0) throw std::runtime_error(out + ": write failed");
     printCounters(pipeline.estimator().counters(), samples.size(), seconds);
+    if (!calib_path.empty()) {
+      const auto& fit = calibration.magFit();
+      std::fprintf(stderr, "{\"mag_calibration_set_aside\":%llu,\"mag_calibration_taken_back\":%llu,"
+                   "\"mag_calibration_in_use_at_end\":%s}\n",
+                   static_cast<unsigned long long>(fit.setAside()), static_cast<unsigned long long>(fit.takenBack()),
+                   fit.calibrationInUse() ? "true" : "false");
+    }
     if (with_gps) {
       std::fprintf(stderr, "{\"gps_epochs\":%zu,\"gps_epochs_used_for_declination\":%llu", gps.epochs.size(),
                    static_cast<unsigned long long>(pipeline.gpsEpochsUsedForDeclination()));

@@ -18,7 +18,7 @@
 
 #include "headingd/attitude_t.hpp"
 #include "headingd/core/heading_pipeline.hpp"
-#include "headingd/core/imu_calibration.hpp"
+#include "headingd/core/mag_calibration_fit.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/latency_histogram.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
@@ -77,7 +77,10 @@ class EstimatorLoop {
 
   const DaemonConfig& config_;
   core::HeadingPipeline pipeline_;
-  core::ImuCorrection correction_;  // [daemon] calibration, applied to every sample
+  // [daemon] calibration, applied to every sample; its magnetometer part is set aside while
+  // it no longer fits (mag_calibration_fit.hpp).
+  core::CalibratedImuStream correction_;
+  bool mag_calibration_in_use_ = true;  // last state logged
   std::vector<SampleRing<ImuRingEntry>*> imu_rings_;
   std::vector<SampleRing<GpsRingEntry>*> gps_rings_;
   std::vector<Source*> sources_;

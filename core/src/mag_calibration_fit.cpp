@@ -1,0 +1,62 @@
+#include "headingd/core/mag_calibration_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace headingd::core {
+
+void MagCalibrationFit::Strength::update(double norm, double alpha) {
+  if (!started) {
+    low_pass = norm;
+    started = true;
+    return;
+  }
+  low_pass += alpha * (norm - low_pass);
+  const double relative = (norm - low_pass) / std::max(low_pass, 1e-9);
+  variance += alpha * (relative * relative - variance);
+}
+
+double MagCalibrationFit::rawFluctuation() const { return std::sqrt(raw_.variance); }
+double MagCalibrationFit::calibratedFluctuation() const { return std::sqrt(calibrated_.variance); }
+
+bool MagCalibrationFit::fitsBetter(const Strength& other, const Strength& in_use) const {
+  const double floor = p_.min_relative_fluctuation * p_.min_relative_fluctuation;
+  if (in_use.variance > floor && in_use.variance > p_.variance_ratio * other.variance) return true;
+  if (!(expected_norm_uT_ > 0.0)) return false;
+  const double in_use_error = std::abs(in_use.low_pass / expected_norm_uT_ - 1.0);
+  const double other_error = std::abs(other.low_pass / expected_norm_uT_ - 1.0);
+  return in_use_error > p_.max_relative_strength_error && other_error < p_.strength_error_ratio * in_use_error;
+}
+
+bool MagCalibrationFit::update(const Vec3& raw_uT, const Vec3& calibrated_uT, double dt_s) {
+  const double raw_norm = raw_uT.norm(), calibrated_norm = calibrated_uT.norm();
+  if (!std::isfinite(raw_norm) || !std::isfinite(calibrated_norm) || !(dt_s >= 0.0)) return calibrated_in_use_;
+  // First-order low-pass with time constant τ: α = 1 − exp(−dt/τ).
+  const double alpha = 1.0 - std::exp(-std::min(dt_s, 1.0) / p_.time_constant_s);
+  raw_.update(raw_norm, alpha);
+  calibrated_.update(calibrated_norm, alpha);
+
+  const Strength& in_use = calibrated_in_use_ ? calibrated_ : raw_;
+  const Strength& other = calibrated_in_use_ ? raw_ : calibrated_;
+  other_better_s_ = fitsBetter(other, in_use) ? other_better_s_ + dt_s : 0.0;
+  if (other_better_s_ >= p_.confirm_s) {
+    calibrated_in_use_ = !calibrated_in_use_;
+    ++(calibrated_in_use_ ? taken_back_ : set_aside_);
+    other_better_s_ = 0.0;
+  }
+  return calibrated_in_use_;
+}
+
+ImuSample CalibratedImuStream::apply(const ImuSample& raw) {
+  if (!calibrated_) return raw;
+  ImuSample out = correction_.apply(raw);
+  if (!raw.has_mag) return out;
+  const double dt_s = have_last_mag_ ? static_cast<double>(raw.t_ns - last_mag_t_ns_) * 1e-9 : 0.0;
+  last_mag_t_ns_ = raw.t_ns;
+  have_last_mag_ = true;
+  // A backwards or huge step (clock jump) feeds dt 0 resp. is capped inside update().
+  if (!fit_.update(raw.mag_uT, out.mag_uT, std::max(dt_s, 0.0))) out.mag_uT = raw.mag_uT;
+  return out;
+}
+
+}  // namespace headingd::core
