@@ -1,5 +1,7 @@
 #include "headingd/core/epoch_compass.hpp"
 
+#include <cmath>
+
 #include "headingd/core/mag_heading_observer.hpp"
 
 namespace headingd::core {
@@ -7,6 +9,7 @@ namespace headingd::core {
 void EpochCompass::add(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s) {
   q_start_sensor_ = (q_start_sensor_ * gyroIncrement(gyro_rad_s, dt_s)).normalized();
   accel_sum_ += q_start_sensor_ * accel_m_s2;
+  x_axis_sum_ += q_start_sensor_ * Vec3::UnitX();
   ++accel_count_;
   if (mag_uT != nullptr) {
     mag_sum_ += q_start_sensor_ * *mag_uT;
@@ -26,7 +29,15 @@ std::optional<double> EpochCompass::takeHeading(std::size_t min_samples, double 
       // heading, which measuredHeading accounts for).
       const Quat q_tilt = Quat::FromTwoVectors(-accel, Vec3::UnitZ());
       const MagHeadingMeasurement m = measureMagHeading(q_tilt, mag, min_horizontal_fraction);
-      if (m.valid) heading = measuredHeading(q_tilt, m);
+      if (m.valid) {
+        // From the heading at the end to the interval's mean heading: the angle about down
+        // from the end's x-axis to the mean x-axis, both on the horizontal plane.
+        const Vec3 down = -accel.normalized();
+        const Vec3 mean_x = q_sensor_start * x_axis_sum_;
+        const Vec3 end_x_h = Vec3::UnitX() - down.x() * down, mean_x_h = mean_x - mean_x.dot(down) * down;
+        const double to_mean = std::atan2(down.dot(end_x_h.cross(mean_x_h)), end_x_h.dot(mean_x_h));
+        heading = wrapAngle(measuredHeading(q_tilt, m) + to_mean);
+      }
     }
   }
   restart();
@@ -36,6 +47,7 @@ std::optional<double> EpochCompass::takeHeading(std::size_t min_samples, double 
 void EpochCompass::restart() {
   q_start_sensor_ = Quat::Identity();
   accel_sum_.setZero();
+  x_axis_sum_.setZero();
   mag_sum_.setZero();
   accel_count_ = 0;
   mag_count_ = 0;

@@ -17,7 +17,7 @@ HeadingPipeline::HeadingPipeline(const EstimatorParams& params, const WorldMagne
     : p_(params),
       wmm_(wmm),
       estimator_(params),
-      gait_(params.gait_high_pass_time_constant_s),
+      gait_(params.gait_window_s),
       course_minus_heading_(params.decl_direction_width_rad, static_cast<int>(params.decl_min_direction_epochs)) {
   updateDeclination();  // no source yet: declination unknown (σ = ∞), mounting yaw the prior
 }
@@ -27,6 +27,7 @@ SampleVerdict HeadingPipeline::process(const ImuSample& s) {
   const EstimatorOutput& a = estimator_.output();
   if (verdict != SampleVerdict::kAccepted || a.dt_s <= 0.0) {
     epoch_compass_.restart();
+    gait_.restart();
     updateOutput();
     return verdict;
   }
@@ -34,9 +35,14 @@ SampleVerdict HeadingPipeline::process(const ImuSample& s) {
     last_disturbed_ns_ = s.t_ns;
     ever_disturbed_ = true;
   }
-  epoch_compass_.add(s.gyro_rad_s - a.gyro_bias_rad_s, s.accel_m_s2, s.has_mag ? &s.mag_uT : nullptr, a.dt_s);
+  const Vec3 gyro = s.gyro_rad_s - a.gyro_bias_rad_s;
+  epoch_compass_.add(gyro, s.accel_m_s2, s.has_mag ? &s.mag_uT : nullptr, a.dt_s);
   const bool walking = last_walking_gps_ns_ && s.t_ns - *last_walking_gps_ns_ < 2'000'000'000 && a.head_height > 0.8;
-  if (walking && a.valid) gait_.update(a.q_nb, s.accel_m_s2, a.dt_s, p_.gravity_m_s2);
+  if (walking && a.valid) {
+    gait_.update(gyro, s.accel_m_s2, a.dt_s);
+  } else {
+    gait_.restart();
+  }
   updateOutput();
   return verdict;
 }
@@ -84,7 +90,9 @@ void HeadingPipeline::processGps(const GpsObservation& gps) {
   const double sensor_heading = out_.heading_mag_rad;
   const std::optional<double> compass_heading =
       epoch_compass_.takeHeading(compassMinSamples(gps.t_ns), p_.mag_min_horizontal_fraction);
-  if (compass_heading && courseGatesPass(gps, sensor_heading)) course_minus_heading_.add(*gps.course_rad, *compass_heading);
+  const bool added = compass_heading && courseGatesPass(gps, sensor_heading);
+  if (added) course_minus_heading_.add(*gps.course_rad, *compass_heading, previous_epoch_added_);
+  previous_epoch_added_ = added;
   if (gps.fix_ok && gps.course_rad) {
     previous_gps_ns_ = gps.t_ns;
     previous_course_rad_ = *gps.course_rad;

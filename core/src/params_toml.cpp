@@ -66,7 +66,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"mag_restore_max_age_s", &P::mag_restore_max_age_s, 0.0, 600.0, "s"},
       {"mag_restore_confirm_s", &P::mag_restore_confirm_s, 0.0, 60.0, "s"},
       {"gait_min_speed_mps", &P::gait_min_speed_mps, 0.0, 20.0, "m/s"},
-      {"gait_high_pass_time_constant_s", &P::gait_high_pass_time_constant_s, 0.05, 60.0, "s"},
+      {"gait_window_s", &P::gait_window_s, 0.5, 60.0, "s"},
       {"mount_yaw_prior_sigma_rad", &P::mount_yaw_prior_sigma_rad, 0.0, 3.2, "rad"},
       {"decl_min_speed_mps", &P::decl_min_speed_mps, 0.0, 100.0, "m/s"},
       {"decl_max_hdop", &P::decl_max_hdop, 0.5, 100.0, "1"},

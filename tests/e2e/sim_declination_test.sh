@@ -3,11 +3,16 @@
 # Stockholm, consumer-grade IMU and GPS. (1) a 3° local anomaly, no mounting yaw; (2) no
 # anomaly, a 3° mounting yaw. The final estimates are the last row of the replay's output.
 #
-# One seed is one draw of the GPS course noise, which alone moves the result by about 0.4°
-# (ideal IMU, 10 seeds: RMS 0.38°), so the test asserts the RMS error over seeds 1-8 as
-# well as each seed. Thresholds are what this version achieves with some margin (issue 4
-# closing note): declination RMS 0.56° / 0.65°, mounting yaw RMS 0.25°; the issue's 0.5° is
-# a target the RMS is near, not met on every seed.
+# One seed is one draw of the GPS course noise, which alone moves the result by about 0.4°:
+# the mean course error of the simulated receiver over the walking epochs (σ_v 0.08 m/s,
+# correlated over 2 s), read from gps_truth.csv, is RMS 0.38° over seeds 1-30 and beyond 0.5°
+# on 6 of them (seeds 1, 2 and 8 here: +0.61, +0.72, +0.70). Add the consumer IMU's residual
+# magnetometer rotation about z (RMS 0.27° over seeds 1-24) and accelerometer misalignment
+# (mounting yaw, RMS 0.17°), which nothing in this walk can observe, and the issue's 0.5° on
+# every seed lies below the information in the data. So the test asserts the RMS error over
+# seeds 1-8 as well as each seed. Thresholds are what this version achieves with some margin
+# (issue 4 closing note): declination RMS 0.59° / 0.66°, worst 1.13°; mounting yaw RMS 0.20°,
+# worst 0.30° (the issue's 0.5° on every seed).
 set -euo pipefail
 sim=$1 replay=$2
 work=$(mktemp -d)
@@ -43,14 +48,14 @@ for seed in 1 2 3 4 5 6 7 8; do
   echo "seed $seed: anomaly run decl error ${anomaly_decl[-1]}° mount ${anomaly_mount[-1]}°;" \
        "mount run decl error ${mount_decl[-1]}° mount error ${mount_mount[-1]}°"
 done
-# Every seed: declination within 1.2° (worst measured 1.06°), mounting yaw within 0.6° (0.51°).
+# Every seed: declination within 1.2° (worst measured 1.13°), mounting yaw within 0.5° (0.30°).
 for e in "${anomaly_decl[@]}" "${mount_decl[@]}"; do
   awk -v e="$e" 'BEGIN { exit !(e <= 1.2 && e >= -1.2) }' || { echo "declination error $e beyond 1.2°"; failed=1; }
 done
 for e in "${anomaly_mount[@]}" "${mount_mount[@]}"; do
-  awk -v e="$e" 'BEGIN { exit !(e <= 0.6 && e >= -0.6) }' || { echo "mounting yaw error $e beyond 0.6°"; failed=1; }
+  awk -v e="$e" 'BEGIN { exit !(e <= 0.5 && e >= -0.5) }' || { echo "mounting yaw error $e beyond 0.5°"; failed=1; }
 done
 check_rms "anomaly run: declination" 0.65 "${anomaly_decl[@]}"
-check_rms "mount run: declination" 0.75 "${mount_decl[@]}"
-check_rms "both runs: mounting yaw" 0.35 "${anomaly_mount[@]}" "${mount_mount[@]}"
+check_rms "mount run: declination" 0.72 "${mount_decl[@]}"
+check_rms "both runs: mounting yaw" 0.25 "${anomaly_mount[@]}" "${mount_mount[@]}"
 exit $failed

@@ -106,8 +106,9 @@ struct EstimatorParams {
   // Walking: the GPS speed was at least this within the last two seconds and the body is
   // upright (h(q) > 0.8).
   double gait_min_speed_mps = 0.8;
-  // The mean horizontal acceleration is removed with a low-pass of this time constant.
-  double gait_high_pass_time_constant_s = 2.0;
+  // Length of one gyro-frame window whose mean specific force is the vertical and is
+  // removed from the accelerations (several strides; gait_mount_yaw.hpp).
+  double gait_window_s = 4.0;
   // Uncertainty of the assumed mounting yaw of 0 before the gait has given one.
   double mount_yaw_prior_sigma_rad = 0.17;  // 10 deg
 
@@ -118,7 +119,10 @@ struct EstimatorParams {
   double decl_min_speed_mps = 1.0;
   double decl_max_hdop = 3.0;
   double decl_max_turn_rate_rad_s = 0.17;  // 10 deg/s
-  double decl_min_undisturbed_s = 2.0;
+  // 1 s = one epoch interval at 1 Hz: an epoch whose compass interval held a disturbed
+  // sample is left out. (2 s also dropped the next, clean epoch; with the consumer
+  // magnetometer's noise the detector's false alarms then cost 15-25 % of the epochs.)
+  double decl_min_undisturbed_s = 1.0;
   // Eq. 5.1 averages over walking directions; an epoch starts a new direction when its
   // course is further than this from every direction seen so far.
   double decl_direction_width_rad = 0.52;  // 30 deg

@@ -67,6 +67,7 @@ class HeadingPipeline {
   std::optional<std::int64_t> previous_gps_ns_;
   double previous_course_rad_ = 0.0;
   double previous_sensor_heading_rad_ = 0.0;
+  bool previous_epoch_added_ = false;  // the previous GPS epoch counted for the declination
 };
 
 }  // namespace headingd::core
