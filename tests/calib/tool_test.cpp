@@ -132,5 +132,22 @@ TEST(CalibrateTool, TooLittleRotationExitsWithThree) {
   fs::remove_all(dir);
 }
 
+// The dip's sign comes from the WMM at the place or from --hemisphere, not both; with
+// --hemisphere north the K&S misalignment step keeps the minimum that dips down.
+TEST(CalibrateTool, HemisphereGivesTheDipSign) {
+  const fs::path dir = tempDir();
+  writeCsv(simulated("calib-rotation-long", 7), dir / "calib.csv");
+  const std::string tool = std::string(HEADINGD_CALIBRATE_TOOL) + " --imu-csv " + (dir / "calib.csv").string();
+  EXPECT_EQ(run(tool + " --method ellipsoid --hemisphere north --lat 59.33 --lon 18.07 --date 2026-06-01 --out " +
+                (dir / "x.toml").string()),
+            2);
+  EXPECT_EQ(run(tool + " --method ellipsoid --hemisphere west --out " + (dir / "x.toml").string()), 2);
+  ASSERT_EQ(run(tool + " --method ellipsoid --field-uT 51.9 --hemisphere north --out " + (dir / "n.toml").string()), 0);
+  const core::ImuCalibration c = core::parseImuCalibration(readText(dir / "n.toml"), "n.toml");
+  ASSERT_TRUE(c.mag.dip_rad.has_value());
+  EXPECT_GT(*c.mag.dip_rad, 0.0);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace headingd::calib_test

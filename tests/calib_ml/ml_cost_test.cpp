@@ -67,5 +67,19 @@ TEST(MlCost, RejectsANonPositiveDefiniteInnovation) {
   EXPECT_FALSE(evaluateMlCost(f.data, f.theta, MlGradient::kAutomatic, cost, nullptr));
 }
 
+// The mirror of the other dip sign is outside θ's domain once the place is known: the cost
+// at a negative dip is refused with kDown and accepted without a sign.
+TEST(MlCost, RefusesTheDipSignThePlaceRulesOut) {
+  Fixture f = makeFixture();
+  f.theta[ml_index::kDip] = -std::abs(f.theta[ml_index::kDip]);
+  double cost = 0.0;
+  f.data.expected_dip_sign = DipSign::kUnknown;
+  EXPECT_TRUE(evaluateMlCost(f.data, f.theta, MlGradient::kAutomatic, cost, nullptr));
+  f.data.expected_dip_sign = DipSign::kDown;
+  EXPECT_FALSE(evaluateMlCost(f.data, f.theta, MlGradient::kAutomatic, cost, nullptr));
+  f.data.expected_dip_sign = DipSign::kUp;
+  EXPECT_TRUE(evaluateMlCost(f.data, f.theta, MlGradient::kAutomatic, cost, nullptr));
+}
+
 }  // namespace
 }  // namespace headingd::calib

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "headingd/calib/calibration_error.hpp"
@@ -35,13 +36,38 @@ double quantile(std::vector<double> v, double q) {
   return v[static_cast<std::size_t>(std::min<double>(q * static_cast<double>(v.size()), v.size() - 1))];
 }
 
+// Whether the calibration is told the dip (its sign, and its value for the ML step's second
+// start), as headingd-calibrate is by the WMM at --lat/--lon/--date (the simulated place is
+// Linköping, dip +72°).
+bool g_place_known = true;
+std::size_t g_decimation = 1;
+
 calib::MlCalibrationOptions optionsFor(const calib_montecarlo::KsRun& run, double min_coverage) {
   calib::MlCalibrationOptions o;
   o.initial.field_norm_uT = run.truth.field_norm_uT;
+  if (g_place_known) {
+    o.initial.expected_dip_sign = calib::dipSignOf(run.truth.dip_rad);
+    o.initial.expected_dip_rad = run.truth.dip_rad;
+  }
   o.initial.stationary_begin = 0;
   o.initial.stationary_count = run.stationary_samples;
   o.initial.ellipsoid_min_coverage = min_coverage;
+  o.decimation = g_decimation;
   return o;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The ML calibration of `run`, with the seconds of step 2 (the refinement) alone.
+calib::MlCalibrationResult calibrateTimed(const calib_montecarlo::KsRun& run, const calib::MlCalibrationOptions& o,
+                                          double& ml_seconds) {
+  calib::MlProblem problem = calib::prepareMaximumLikelihood(run.samples, o);
+  const auto t0 = std::chrono::steady_clock::now();
+  calib::MlCalibrationResult r = calib::refineMaximumLikelihood(std::move(problem), o);
+  ml_seconds = secondsSince(t0);
+  return r;
 }
 
 // Median seconds of `repeats` ML refinements of `run` with `method`.
@@ -51,8 +77,9 @@ double timeMl(const calib_montecarlo::KsRun& run, double min_coverage, calib::Ml
   for (int i = 0; i < repeats; ++i) {
     calib::MlCalibrationOptions o = optionsFor(run, min_coverage);
     o.gradient = method;
-    const calib::MlCalibrationResult r = calib::calibrateMaximumLikelihood(run.samples, o);
-    seconds.push_back(r.seconds);
+    double s = 0.0;
+    const calib::MlCalibrationResult r = calibrateTimed(run, o, s);
+    seconds.push_back(s);
     iterations = r.iterations;
   }
   return median(seconds);
@@ -61,19 +88,16 @@ double timeMl(const calib_montecarlo::KsRun& run, double min_coverage, calib::Ml
 // Median seconds of one cost-and-gradient evaluation at θ̂0.
 double timeGradient(const calib_montecarlo::KsRun& run, double min_coverage, calib::MlGradient method, int repeats) {
   const calib::MlCalibrationOptions o = optionsFor(run, min_coverage);
-  const calib::MlInitialEstimate init = calib::estimateInitialParameters(run.samples, o.initial);
-  calib::MlDataOptions d;
-  d.field_norm_uT = o.initial.field_norm_uT;
-  d.gravity_m_s2 = init.gravity_m_s2;
-  const calib::MlData data = calib::prepareMlData(run.samples, d);
-  const calib::MlParameters theta = calib::packParameters(calib::initialParameterValues(init, o.initial));
+  const calib::MlProblem problem = calib::prepareMaximumLikelihood(run.samples, o);
+  const calib::MlData& data = problem.data;
+  const calib::MlParameters& theta = problem.theta_initial;
   std::vector<double> seconds;
   for (int i = 0; i < repeats; ++i) {
     double cost = 0.0;
     calib::MlParameters gradient{};
     const auto t0 = std::chrono::steady_clock::now();
     calib::evaluateMlCost(data, theta, method, cost, &gradient);
-    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    seconds.push_back(secondsSince(t0));
   }
   return median(seconds);
 }
@@ -94,8 +118,9 @@ int main(int argc, char** argv) {
   bool quiet = false;
   std::string table_reading = "variance";
   app.add_option("--runs", runs, "number of Monte Carlo runs")->check(CLI::PositiveNumber);
-  app.add_option("--variant", variant_name, "short (100 still + 300 rotating samples, K&S) or long (100 + 2900)")
-      ->check(CLI::IsMember({"short", "long"}));
+  app.add_option("--variant", variant_name,
+                 "short (100 still + 300 rotating samples, K&S), long (100 + 2900) or 5min (100 + 29900)")
+      ->check(CLI::IsMember({"short", "long", "5min"}));
   app.add_option("--out", out_path, "CSV with one row per run");
   app.add_option("--seed", seed, "seed of the first run; run i uses seed + i");
   app.add_option("--min-coverage", min_coverage,
@@ -109,7 +134,18 @@ int main(int argc, char** argv) {
                  "read Table 2's noise entries as variances (literally, Sigma) or as standard deviations")
       ->check(CLI::IsMember({"variance", "sigma"}));
   app.add_flag("--quiet", quiet, "no line per run");
+  std::size_t decimation = 1;
+  app.add_option("--decimation", decimation,
+                 "ML step on every n-th sample, the gyro pre-integrated between (1: every sample)")
+      ->check(CLI::PositiveNumber);
+  std::string place = "known";
+  app.add_option("--place", place,
+                 "known: the calibration is told the simulated dip, its sign and value (as headingd-calibrate is by "
+                 "the WMM at --lat/--lon/--date); unknown: it is not (eq. 27's best minimum, one ML start)")
+      ->check(CLI::IsMember({"known", "unknown"}));
   CLI11_PARSE(app, argc, argv);
+  g_place_known = place == "known";
+  g_decimation = decimation;
 
   const calib_montecarlo::KsVariant variant = calib_montecarlo::parseVariant(variant_name);
   const calib_montecarlo::KsNoiseScale noise{noise_factor, table_reading == "sigma"};
@@ -125,6 +161,7 @@ int main(int argc, char** argv) {
            "dip_error_initial_deg,dip_error_ml_deg,gyro_bias_error_initial_deg_s,gyro_bias_error_ml_deg_s,error\n";
   }
 
+  const auto study_start = std::chrono::steady_clock::now();
   std::vector<double> rmse_init, rmse_ml, ml_seconds;
   int ml_better = 0, failures = 0;
   for (int i = 0; i < runs; ++i) {
@@ -132,21 +169,24 @@ int main(int argc, char** argv) {
     const calib_montecarlo::KsRun run = calib_montecarlo::simulateKokSchonRun(variant, run_seed, noise);
     const calib_montecarlo::KsTruth& truth = run.truth;
     try {
-      const calib::MlCalibrationResult r = calib::calibrateMaximumLikelihood(run.samples, optionsFor(run, min_coverage));
+      double seconds = 0.0;
+      const calib::MlCalibrationResult r = calibrateTimed(run, optionsFor(run, min_coverage), seconds);
       const double e0 = calib_montecarlo::headingRmseRad(run, r.initial.D, r.initial.offset_uT) * kRadToDeg;
       const double e1 = calib_montecarlo::headingRmseRad(run, r.D, r.offset_uT) * kRadToDeg;
       rmse_init.push_back(e0);
       rmse_ml.push_back(e1);
-      ml_seconds.push_back(r.seconds);
+      ml_seconds.push_back(seconds);
       if (e1 < e0) ++ml_better;
       if (!quiet) {
-        std::printf("run %3d seed %llu: heading RMSE initial %7.3f deg, ML %7.3f deg, %3d iterations, %.2f s%s\n", i,
-                    static_cast<unsigned long long>(run_seed), e0, e1, r.iterations, r.seconds,
+        std::printf("run %3d seed %llu: heading RMSE initial %7.3f deg, ML %7.3f deg, %3d iterations, %d restarts, "
+                    "%d starts, %.2f s%s\n",
+                    i, static_cast<unsigned long long>(run_seed), e0, e1, r.iterations, r.restarts, r.starts, seconds,
                     e1 < e0 ? "" : "  (ML not better)");
+        std::fflush(stdout);  // a long study shows its progress when its output goes to a file
       }
       if (csv) {
         csv << i << ',' << run_seed << ',' << e0 << ',' << e1 << ',' << (e1 < e0 ? 1 : 0) << ',' << r.cost_initial << ','
-            << r.cost_final << ',' << r.iterations << ',' << r.seconds << ',' << (r.converged ? 1 : 0) << ','
+            << r.cost_final << ',' << r.iterations << ',' << seconds << ',' << (r.converged ? 1 : 0) << ','
             << (r.initial.D - truth.mag_D).norm() << ',' << (r.D - truth.mag_D).norm() << ','
             << (r.initial.offset_uT - truth.mag_offset_uT).norm() << ',' << (r.offset_uT - truth.mag_offset_uT).norm()
             << ',' << (r.initial.dip_rad - truth.dip_rad) * kRadToDeg << ',' << (r.dip_rad - truth.dip_rad) * kRadToDeg
@@ -161,16 +201,17 @@ int main(int argc, char** argv) {
   }
 
   const double fraction = static_cast<double>(ml_better) / static_cast<double>(runs);
-  std::printf("\nKok & Schon section 8 Monte Carlo, variant %s, %d runs (seeds %llu..%llu), Table 2 noise read as %s, x%.2f\n",
+  std::printf("\nKok & Schon section 8 Monte Carlo, variant %s, %d runs (seeds %llu..%llu), Table 2 noise read as %s, x%.2f, "
+              "place %s, ML decimation %zu\n",
               calib_montecarlo::variantName(variant), runs, static_cast<unsigned long long>(seed),
-              static_cast<unsigned long long>(seed + runs - 1), table_reading.c_str(), noise_factor);
+              static_cast<unsigned long long>(seed + runs - 1), table_reading.c_str(), noise_factor, place.c_str(), decimation);
   std::printf("  heading RMSE, initial estimate: median %.3f deg, 90th percentile %.3f deg, max %.3f deg\n",
               median(rmse_init), quantile(rmse_init, 0.9), quantile(rmse_init, 1.0));
   std::printf("  heading RMSE, ML estimate:      median %.3f deg, 90th percentile %.3f deg, max %.3f deg\n",
               median(rmse_ml), quantile(rmse_ml, 0.9), quantile(rmse_ml, 1.0));
   std::printf("  ML better than the initial estimate in %d of %d runs (%.1f %%); %d runs failed\n", ml_better, runs,
               100.0 * fraction, failures);
-  std::printf("  ML step: median %.3f s per run\n", median(ml_seconds));
+  std::printf("  ML step: median %.3f s per run; whole study %.1f s\n", median(ml_seconds), secondsSince(study_start));
 
   if (speed_repeats > 0) {
     const calib_montecarlo::KsRun run = calib_montecarlo::simulateKokSchonRun(variant, seed, noise);

@@ -7,6 +7,7 @@
 //   ml         Kok & Schön Algorithm 1, maximum likelihood through the EKF predictor
 // Exit codes: 0 written, 1 file error, 2 bad arguments, 3 the data cannot give a calibration.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +15,9 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 
+#include "headingd/calib/dip_sign.hpp"
 #include "headingd/calib/ellipsoid_fit.hpp"
 #include "headingd/calib/ml_calibration.hpp"
 #include "headingd/calib/static_segments.hpp"
@@ -73,6 +76,14 @@ int main(int argc, char** argv) {
   app.add_option("--lon", lon, "longitude in degrees, for the WMM field");
   app.add_option("--date", date, "date YYYY-MM-DD, for the WMM field");
   app.add_option("--wmm", wmm_path, "WMM coefficient file (NOAA COF)")->capture_default_str();
+  std::size_t ml_decimation = 1;
+  app.add_option("--ml-decimation", ml_decimation,
+                 "ml: the likelihood on every n-th sample, the gyro pre-integrated between (for minutes of data)")
+      ->capture_default_str();
+  std::string hemisphere;
+  app.add_option("--hemisphere", hemisphere,
+                 "north | south: the magnetic hemisphere, for the sign of the dip when no --lat/--lon/--date is given "
+                 "(ellipsoid and ml; it picks between the mirror solutions of the misalignment step)");
   app.add_option("--first-sample", first, "first row used (0-based)");
   app.add_option("--end-sample", end, "one past the last row used (default: all)");
   app.footer("Without --field-uT or --lat/--lon/--date the field norm is taken from the data (D scaled to unit "
@@ -90,6 +101,15 @@ int main(int argc, char** argv) {
   }
   if (field_uT && (!(*field_uT > 0.0) || *field_uT > 1000.0)) {
     std::fprintf(stderr, "headingd-calibrate: --field-uT must be within 0 .. 1000\n");
+    return 2;
+  }
+
+  if (!hemisphere.empty() && hemisphere != "north" && hemisphere != "south") {
+    std::fprintf(stderr, "headingd-calibrate: --hemisphere must be north or south (got '%s')\n", hemisphere.c_str());
+    return 2;
+  }
+  if (!hemisphere.empty() && wmm_requested) {
+    std::fprintf(stderr, "headingd-calibrate: give --hemisphere or --lat/--lon/--date, not both\n");
     return 2;
   }
 
@@ -125,6 +145,19 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::span<const core::ImuSample> samples(all.data() + first, end - first);
+
+  // The dip's sign (and value) known from the place: Kok & Schön's misalignment step has a
+  // mirror pair of solutions that the data alone cannot tell apart (calib/dip_sign.hpp).
+  calib::DipSign dip_sign = calib::DipSign::kUnknown;
+  if (field.dip_rad) {
+    dip_sign = calib::dipSignOf(*field.dip_rad);
+  } else if (!hemisphere.empty()) {
+    dip_sign = hemisphere == "north" ? calib::DipSign::kDown : calib::DipSign::kUp;
+  }
+  const auto withPlace = [&](calib::MlInitialOptions& o) {
+    o.expected_dip_sign = dip_sign;
+    o.expected_dip_rad = field.dip_rad;
+  };
 
   core::ImuCalibration cal;
   cal.provenance.method = method;
@@ -179,6 +212,7 @@ int main(int argc, char** argv) {
       // accelerometer, so that headings from D⁻¹(y - o) are right, not just |m_b|.
       calib::MlInitialOptions o;
       o.ellipsoid_min_coverage = calib::EllipsoidFitOptions{}.min_coverage;
+      withPlace(o);
       if (!field.norm_uT) {  // from the data: D of unit determinant
         const auto pre = calib::fitEllipsoid(mags, 1.0);
         field.norm_uT = std::cbrt(pre.D.determinant());
@@ -211,6 +245,10 @@ int main(int argc, char** argv) {
                misalignment.angle() / kDeg, init.dip_rad / kDeg);
       report.notes.push_back(describe("misalignment to the inertial axes %.2f deg (K&S eq. 27, rms residual %.4f)",
                                       misalignment.angle() / kDeg, init.misalignment_rms, ""));
+      if (init.misalignment_sign_chosen) {
+        report.notes.push_back(std::string("misalignment: the best minimum of eq. 27 had the dip sign the place rules "
+                                           "out; the best of sign ") + calib::dipSignName(dip_sign) + " was taken");
+      }
       const double fit_residual = init.ellipsoid_residual_rms_uT;
       report.residuals = radialResiduals(restSigmaCalibrated(fit_residual));
       report.residual_kind = "(|m_b| - F) / sigma, sigma the magnetometer noise at rest";
@@ -248,14 +286,24 @@ int main(int argc, char** argv) {
         field.detail = "scaled so that det D = 1 (no --field-uT or WMM place given)";
       }
       o.initial.field_norm_uT = *field.norm_uT;
+      withPlace(o.initial);
+      o.decimation = std::max<std::size_t>(ml_decimation, 1);
       if (!segments.empty()) {
         o.initial.stationary_begin = segments.front().begin;
         o.initial.stationary_count = std::min<std::size_t>(segments.front().size(), 500);
       }
-      progress("maximum likelihood (Kok & Schon Algorithm 1) on %zu samples", samples.size());
-      const auto r = calib::calibrateMaximumLikelihood(samples, o, [](const calib::MlProgress& p) {
-        progress("  iteration %3d  cost %.6g  |gradient| %.3g", p.iteration, p.cost, p.gradient_max_norm);
+      progress("maximum likelihood (Kok & Schon Algorithm 1) on %zu samples (every %zu. in the likelihood); dip sign %s",
+               samples.size(), o.decimation, calib::dipSignName(dip_sign));
+      calib::MlProblem problem = calib::prepareMaximumLikelihood(samples, o);
+      progress("initial estimate (step 1): dip %.2f deg, %d misalignment minima%s", problem.initial.dip_rad / kDeg,
+               problem.initial.misalignment_minima,
+               problem.initial.misalignment_sign_chosen ? ", the best one refused for its dip sign" : "");
+      const auto ml_start = std::chrono::steady_clock::now();
+      const auto r = calib::refineMaximumLikelihood(std::move(problem), o, [](const calib::MlProgress& p) {
+        progress("  iteration %3d  cost %.6g  |gradient| %.3g%s", p.iteration, p.cost, p.gradient_max_norm,
+                 p.restart > 0 ? "  (restarted)" : "");
       });
+      const double ml_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ml_start).count();
       cal.mag.D = r.D;
       cal.mag.offset_uT = r.offset_uT;
       cal.mag.field_norm_uT = r.field_norm_uT;
@@ -274,10 +322,16 @@ int main(int argc, char** argv) {
       }
       report.residual_kind = "EKF magnetometer innovations, normalised (x, y, z interleaved)";
       report.notes.push_back(describe("ML: %.0f iterations, %.2f s; cost from the initial estimate ", r.iterations,
-                                      r.seconds, "") +
+                                      ml_seconds, "") +
                              std::to_string(r.cost_initial) + " to " + std::to_string(r.cost_final) + " (" +
                              r.termination + ")");
-      progress("ML: %d iterations, %.2f s, %s", r.iterations, r.seconds, r.termination.c_str());
+      if (r.starts > 1) {
+        report.notes.push_back(std::string("ML: the first search ended at the dip's wall (") + r.termination_first_start +
+                               "); a second started from the WMM's dip" +
+                               (r.chosen_start == 1 ? " and was kept" : " and did no better"));
+      }
+      progress("ML: %d iterations, %d restarts, %d starts, %.2f s, %s", r.iterations, r.restarts, r.starts, ml_seconds,
+               r.termination.c_str());
     }
     cal.mag.field_norm_source = field.source;
     cal.mag.field_norm_detail = field.detail;

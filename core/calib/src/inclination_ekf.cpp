@@ -19,8 +19,12 @@ std::vector<core::Vec3> verticalInBody(const MlData& data, const InclinationEkfS
   // Heading is free here: a large σ would only slow the tilt's first steps, so the usual one.
   ekf.initialiseFromGravity(accel0, kMlInitialAttitudeSigma_rad);
   for (const MlSample& s : data.samples) {
-    ekf.predict(s.gyro_rad_s, s.dt_s);
-    ekf.updateAccel(s.accel_m_s2);
+    ekf.predict(s.gyro_rad_s, s.dt_s, s.gyro_noise_dt2_s2);
+    if (s.accel_count > 1) {
+      ekf.updateAccelMean(s.accel_m_s2, s.accel_mean_rotation, s.accel_count);
+    } else {
+      ekf.updateAccel(s.accel_m_s2);
+    }
     vertical.push_back(ekf.attitude().conjugate() * core::Vec3::UnitZ());
   }
   return vertical;

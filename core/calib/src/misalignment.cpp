@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "headingd/calib/calibration_error.hpp"
@@ -94,25 +95,56 @@ Solution gaussNewton(Mat3 r_dt, std::span<const Vec3> u, std::span<const Vec3> v
 
 }  // namespace
 
-MisalignmentEstimate estimateMisalignment(std::span<const Vec3> mag_on_sphere, std::span<const Vec3> vertical_body) {
+std::vector<MisalignmentEstimate> misalignmentMinima(std::span<const Vec3> mag_on_sphere,
+                                                     std::span<const Vec3> vertical_body) {
   if (mag_on_sphere.size() != vertical_body.size()) {
     throw CalibrationError("misalignment: magnetometer and vertical sequences differ in length");
   }
   if (mag_on_sphere.size() < 10) {
     throw CalibrationError("misalignment: fewer than 10 samples");
   }
-  Solution best{Mat3::Identity(), 0.0, std::numeric_limits<double>::infinity(), 0};
+  std::vector<Solution> found;
   for (const Mat3& start : cubeRotations()) {
     const Solution s = gaussNewton(start, mag_on_sphere, vertical_body);
-    if (s.cost < best.cost && std::abs(s.mz) <= 1.0) best = s;
+    if (std::isfinite(s.cost) && std::abs(s.mz) <= 1.0) found.push_back(s);
   }
-  MisalignmentEstimate out;
-  out.rotation = best.r_dt.transpose();
-  out.field_down = best.mz;
-  out.dip_rad = std::asin(std::clamp(best.mz, -1.0, 1.0));
-  out.rms_residual = std::sqrt(2.0 * best.cost / static_cast<double>(mag_on_sphere.size()));
-  out.iterations = best.iterations;
+  std::stable_sort(found.begin(), found.end(), [](const Solution& a, const Solution& b) { return a.cost < b.cost; });
+  // Several starts descend into the same minimum: keep the lowest of each group.
+  constexpr double kSameMinimum_rad = 5.0 * std::numbers::pi / 180.0;
+  std::vector<MisalignmentEstimate> out;
+  std::vector<Mat3> kept;
+  for (const Solution& s : found) {
+    const bool seen = std::any_of(kept.begin(), kept.end(), [&](const Mat3& r) {
+      return Eigen::AngleAxisd(r.transpose() * s.r_dt).angle() < kSameMinimum_rad;
+    });
+    if (seen) continue;
+    kept.push_back(s.r_dt);
+    MisalignmentEstimate e;
+    e.rotation = s.r_dt.transpose();
+    e.field_down = s.mz;
+    e.dip_rad = std::asin(std::clamp(s.mz, -1.0, 1.0));
+    e.rms_residual = std::sqrt(2.0 * s.cost / static_cast<double>(mag_on_sphere.size()));
+    e.iterations = s.iterations;
+    out.push_back(e);
+  }
+  if (out.empty()) {  // no start kept |m_z| <= 1: the identity, as before any search
+    MisalignmentEstimate e;
+    e.rms_residual = std::sqrt(2.0 * cost(Mat3::Identity(), 0.0, mag_on_sphere, vertical_body) /
+                               static_cast<double>(mag_on_sphere.size()));
+    out.push_back(e);
+  }
   return out;
+}
+
+MisalignmentEstimate estimateMisalignment(std::span<const Vec3> mag_on_sphere, std::span<const Vec3> vertical_body,
+                                          DipSign expected) {
+  const std::vector<MisalignmentEstimate> minima = misalignmentMinima(mag_on_sphere, vertical_body);
+  if (expected != DipSign::kUnknown) {
+    for (const MisalignmentEstimate& m : minima) {
+      if (dipAgrees(m.field_down, expected)) return m;
+    }
+  }
+  return minima.front();
 }
 
 }  // namespace headingd::calib

@@ -64,6 +64,7 @@ MlInitialEstimate estimateInitialParameters(std::span<const core::ImuSample> sam
   data_options.field_norm_uT = options.field_norm_uT;
   data_options.gravity_m_s2 = out.gravity_m_s2;
   data_options.initial_average_samples = options.initial_average_samples;
+  data_options.expected_dip_sign = options.expected_dip_sign;
   const MlData data = prepareMlData(samples, data_options);
   InclinationEkfSettings ekf;
   ekf.gyro_bias_rad_s = out.gyro_bias_rad_s;
@@ -79,7 +80,20 @@ MlInitialEstimate estimateInitialParameters(std::span<const core::ImuSample> sam
     on_sphere.push_back(d_tilde_inv * (data.samples[i].mag_unit - fit.offset_uT / options.field_norm_uT));
     vertical.push_back(vertical_all[i]);
   }
-  const MisalignmentEstimate mis = estimateMisalignment(on_sphere, vertical);
+  const std::vector<MisalignmentEstimate> minima = misalignmentMinima(on_sphere, vertical);
+  MisalignmentEstimate mis = minima.front();
+  if (options.expected_dip_sign != DipSign::kUnknown) {
+    // The best minimum of the expected sign (the mirror of the other sign explains the same
+    // inner products, dip_sign.hpp); the best of all when none has it.
+    for (const MisalignmentEstimate& m : minima) {
+      if (dipAgrees(m.field_down, options.expected_dip_sign)) {
+        out.misalignment_sign_chosen = &m != &minima.front();
+        mis = m;
+        break;
+      }
+    }
+  }
+  out.misalignment_minima = static_cast<int>(minima.size());
   out.misalignment = mis.rotation;
   out.misalignment_rms = mis.rms_residual;
   out.dip_rad = mis.dip_rad;

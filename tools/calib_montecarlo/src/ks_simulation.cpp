@@ -25,9 +25,10 @@ double smoothRamp(double s) { return s - std::sin(2.0 * kPi * s) / (2.0 * kPi); 
 
 // Attitude during the rotation phase, s ∈ [0, 1] of it: turns about body x, y and z at once.
 Quat rotationAttitude(KsVariant v, double s) {
-  const double turns = v == KsVariant::kShort ? 1.0 : 3.0;
+  const double turns = v == KsVariant::kShort ? 1.0 : v == KsVariant::kLong ? 3.0 : 20.0;
+  const double nods = v == KsVariant::kShort ? 1.0 : v == KsVariant::kLong ? 4.0 : 25.0;
   const double roll = 2.0 * kPi * turns * smoothRamp(s);
-  const double pitch = 0.5 * kPi * std::sin(2.0 * kPi * (v == KsVariant::kShort ? 1.0 : 4.0) * s);
+  const double pitch = 0.5 * kPi * std::sin(2.0 * kPi * nods * s);
   const double yaw = 2.0 * kPi * (turns + 1.0) * smoothRamp(s);
   return Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
               Eigen::AngleAxisd(roll, Vec3::UnitX()));
@@ -44,10 +45,13 @@ Vec3 sigmaFromTable(sim::Rng& rng, double lo, double hi, bool as_sigma) {
 KsVariant parseVariant(std::string_view name) {
   if (name == "short") return KsVariant::kShort;
   if (name == "long") return KsVariant::kLong;
-  throw std::invalid_argument("unknown variant '" + std::string(name) + "' (short, long)");
+  if (name == "5min") return KsVariant::kFiveMinutes;
+  throw std::invalid_argument("unknown variant '" + std::string(name) + "' (short, long, 5min)");
 }
 
-const char* variantName(KsVariant v) { return v == KsVariant::kShort ? "short" : "long"; }
+const char* variantName(KsVariant v) {
+  return v == KsVariant::kShort ? "short" : v == KsVariant::kLong ? "long" : "5min";
+}
 
 KsRun simulateKokSchonRun(KsVariant variant, std::uint64_t seed, KsNoiseScale noise) {
   KsRun run;
@@ -89,7 +93,7 @@ KsRun simulateKokSchonRun(KsVariant variant, std::uint64_t seed, KsNoiseScale no
                      Eigen::AngleAxisd(pose.uniform(-10.0, 10.0) * kDeg, Vec3::UnitX()));
 
   const std::size_t still = 100;
-  const std::size_t rotating = variant == KsVariant::kShort ? 300 : 2900;
+  const std::size_t rotating = variant == KsVariant::kShort ? 300 : variant == KsVariant::kLong ? 2900 : 29900;
   run.stationary_samples = still;
   const std::size_t n = still + rotating;
   run.samples.reserve(n);

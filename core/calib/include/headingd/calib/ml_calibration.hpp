@@ -9,6 +9,9 @@
 // Ceres's quasi-Newton LBFGS with a Wolfe line search (ceres::GradientProblemSolver).
 // Numerical gradients of the same cost (ceres::NumericDiffFirstOrderFunction) stay
 // selectable, to measure what automatic differentiation saves.
+//
+// No clocks here (DESIGN.md: core is pure): the callers time the two steps
+// (prepareMaximumLikelihood, refineMaximumLikelihood) themselves.
 #include <cstddef>
 #include <functional>
 #include <span>
@@ -35,6 +38,14 @@ struct MlCalibrationOptions {
   double gradient_tolerance = 1e-8;
   double parameter_tolerance = 1e-10;
   int lbfgs_rank = 20;
+  // LBFGS can stop on a "numerical failure in line search" (its curvature pairs no longer
+  // describe the cost near the steep walls of a nearly singular S_t) well before a minimum.
+  // The search then starts again from the best point so far with an empty memory, up to this
+  // many times, while each restart still lowers the cost.
+  int max_restarts = 5;
+  // The ML step's measurements thinned to every decimation-th sample, the gyro
+  // pre-integrated between (MlDataOptions::decimation); step 1 always uses every sample.
+  std::size_t decimation = 1;
 };
 
 struct MlProgress {
@@ -42,7 +53,7 @@ struct MlProgress {
   double cost = 0.0;
   double gradient_max_norm = 0.0;
   double step_norm = 0.0;
-  double seconds = 0.0;  // since the optimisation began
+  int restart = 0;  // 0 for the first search, i for the i-th restart
 };
 using MlProgressCallback = std::function<void(const MlProgress&)>;
 
@@ -67,13 +78,17 @@ struct MlCalibrationResult {
 
   double cost_initial = 0.0;  // eq. 6 at θ̂0 and at θ̂ML
   double cost_final = 0.0;
-  int iterations = 0;
+  int iterations = 0;  // summed over the restarts
   int cost_evaluations = 0;
   int gradient_evaluations = 0;
+  int restarts = 0;
+  // 1, or 2 when the first search ended at the dip's wall (|δ| ≈ 90°) and a second began
+  // from θ̂0 with the WMM's dip (MlInitialOptions::expected_dip_rad); chosen_start 1: that one won.
+  int starts = 1;
+  int chosen_start = 0;
+  std::string termination_first_start;  // when starts == 2
   bool converged = false;
-  std::string termination;  // Ceres's message
-  double seconds = 0.0;     // the refinement alone (elapsed time, for the report only)
-  double seconds_total = 0.0;  // with step 1
+  std::string termination;  // Ceres's message, of the last search
 
   // Normalised residuals of the EKF at θ̂ML and at θ̂0 (K&S §7.2, Figs. 5-6).
   std::vector<MlResidual> residuals_final;
@@ -84,7 +99,24 @@ struct MlCalibrationResult {
   std::size_t time_gaps = 0;
 };
 
+// Step 1 and what step 2 needs: the initial estimate, the measurements in the problem's
+// units, θ̂0 and the cost there.
+struct MlProblem {
+  MlInitialEstimate initial;
+  MlData data;
+  MlParameters theta_initial{};
+  double cost_initial = 0.0;
+  std::vector<MlResidual> residuals_initial;
+};
+
 // Throws CalibrationError when step 1 fails or the cost cannot be evaluated at θ̂0.
+MlProblem prepareMaximumLikelihood(std::span<const core::ImuSample> samples, const MlCalibrationOptions& options);
+
+// Step 2 from `problem` (moved into the result's initial/residuals_initial).
+MlCalibrationResult refineMaximumLikelihood(MlProblem problem, const MlCalibrationOptions& options,
+                                            const MlProgressCallback& progress = {});
+
+// Both steps. Throws CalibrationError when step 1 fails or the cost cannot be evaluated at θ̂0.
 MlCalibrationResult calibrateMaximumLikelihood(std::span<const core::ImuSample> samples,
                                                const MlCalibrationOptions& options,
                                                const MlProgressCallback& progress = {});

@@ -165,13 +165,17 @@ class MlEkf {
   }
 
   // Time update with the gyro over dt (K&S eq. 1a, 15): q̃ ← q̃ ⊗ exp(T(y_ω - δω)/2).
-  void predict(const Eigen::Vector3d& gyro_rad_s, double dt_s) {
+  // `noise_dt2_s2` is Σ dt_i² of the gyro samples behind this step: dt² for one sample, less
+  // than dt² when several were pre-integrated (ml_data.hpp, decimation), whose independent
+  // noises add up to Σ dt_i² Σω, not (Σ dt_i)² Σω.
+  void predict(const Eigen::Vector3d& gyro_rad_s, double dt_s, double noise_dt2_s2) {
     if (dt_s <= 0.0) return;
     const Vec3T<T> rate = gyro_rad_s.cast<T>() - model_.gyro_bias;
     q_nb_ = (q_nb_ * quaternionFromRotationVector<T>(rate * T(dt_s))).normalized();
-    const Mat3T<T> G = q_nb_.toRotationMatrix() * T(dt_s);
-    P_ += G * model_.gyro_cov * G.transpose();
+    const Mat3T<T> R = q_nb_.toRotationMatrix();
+    P_ += (R * model_.gyro_cov * R.transpose()) * T(noise_dt2_s2);
   }
+  void predict(const Eigen::Vector3d& gyro_rad_s, double dt_s) { predict(gyro_rad_s, dt_s, dt_s * dt_s); }
 
   // Predicted measurements and their Jacobians with respect to η at the current q̃.
   Vec3T<T> predictedAccel() const { return -(q_nb_.conjugate() * gravity_n_); }
@@ -186,6 +190,25 @@ class MlEkf {
   }
   InnovationTerm<T> updateMag(const Eigen::Vector3d& mag_unit) {
     return update(mag_unit.cast<T>() - predictedMag(), magJacobian(), model_.mag_cov);
+  }
+
+  // The mean of `count` readings taken over the last step, where reading i saw the body
+  // turned by R_i relative to now (from the gyro) and `mean_rotation` = mean R_i: since the
+  // models are linear in R_bn, the mean reads y = -M R_bn g_n (accelerometer) or
+  // D M R_bn m_n + o (magnetometer), with the noise covariance divided by `count`
+  // (ml_data.hpp, decimation). M = I and count 1 are the single-sample updates above.
+  InnovationTerm<T> updateAccelMean(const Eigen::Vector3d& accel_m_s2, const Eigen::Matrix3d& mean_rotation,
+                                    double count) {
+    const Mat3T<T> M = mean_rotation.cast<T>();
+    const Vec3T<T> predicted = M * predictedAccel();
+    return update(accel_m_s2.cast<T>() - predicted, M * accelJacobian(), model_.accel_cov / T(count));
+  }
+  InnovationTerm<T> updateMagMean(const Eigen::Vector3d& mag_unit, const Eigen::Matrix3d& mean_rotation, double count) {
+    const Mat3T<T> M = mean_rotation.cast<T>();
+    const Mat3T<T> r_bn = q_nb_.conjugate().toRotationMatrix();
+    const Vec3T<T> predicted = model_.D * (M * (r_bn * model_.field_n)) + model_.offset;
+    const Mat3T<T> H = model_.D * M * r_bn * crossMatrix<T>(model_.field_n);
+    return update(mag_unit.cast<T>() - predicted, H, model_.mag_cov / T(count));
   }
 
   const QuatT<T>& attitude() const { return q_nb_; }

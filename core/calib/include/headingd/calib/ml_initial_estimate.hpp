@@ -6,8 +6,10 @@
 //   (c) misalignment R_D and dip (§6.2, eqs. 26-28) with the inertial-only EKF
 //       (inclination_ekf.hpp, misalignment.hpp): D̂0 = D̃0 R_D.
 #include <cstddef>
+#include <optional>
 #include <span>
 
+#include "headingd/calib/dip_sign.hpp"
 #include "headingd/calib/ml_parameters.hpp"
 #include "headingd/core/imu_sample.hpp"
 
@@ -31,6 +33,12 @@ struct MlInitialOptions {
   double min_gyro_sigma_rad_s = 1e-4;
   double min_accel_sigma_m_s2 = 1e-3;
   double min_mag_sigma_uT = 0.02;
+  // The dip's sign from the place (WMM) or the hemisphere: picks between eq. 27's mirror
+  // minima, and the ML step refuses the mirror (dip_sign.hpp). kUnknown: the best minimum.
+  DipSign expected_dip_sign = DipSign::kUnknown;
+  // The dip itself from the WMM at the place and date, when known: the ML step's second start
+  // (ml_calibration.hpp, MlCalibrationOptions::max_restarts).
+  std::optional<double> expected_dip_rad;
 };
 
 struct MlInitialEstimate {
@@ -45,6 +53,8 @@ struct MlInitialEstimate {
   core::Mat3 ellipsoid_D = core::Mat3::Identity();  // D̃0
   core::Mat3 misalignment = core::Mat3::Identity(); // R_D
   double misalignment_rms = 0.0;   // of eq. 27, in field units
+  int misalignment_minima = 0;     // distinct minima of eq. 27 found
+  bool misalignment_sign_chosen = false;  // the expected dip sign passed over a lower minimum
   double ellipsoid_coverage = 0.0;
   double ellipsoid_residual_rms_uT = 0.0;
   double ellipsoid_condition_number = 0.0;

@@ -55,9 +55,12 @@ bool mlNegativeLogLikelihood(const MlModel<T>& model, const MlData& data, T& cos
   // 180° (seen in 3 of 30 K&S §8 runs): a dip beyond ±90° (the field's horizontal part
   // pointing south, m_n(π - δ) = Rz(π) m_n(δ)) and -D with the field reversed
   // (m_n(-δ) = -Rz(π) m_n(δ)). North is the field's horizontal direction (+x) and the
-  // initial estimate has det D > 0, so both are outside θ's domain: returning false makes
-  // the line search step back.
-  if (!(model.field_n.x() > T(0.0)) || !(model.D.determinant() > T(0.0))) return false;
+  // initial estimate has det D > 0, so both are outside θ's domain, and so is a dip of the
+  // sign the place rules out (dip_sign.hpp): returning false makes the line search step back.
+  if (!(model.field_n.x() > T(0.0)) || !(model.D.determinant() > T(0.0)) ||
+      !dipAgrees(model.field_n.z(), data.expected_dip_sign)) {
+    return false;
+  }
   MlEkf<T> ekf(model, data.gravity_m_s2);
   core::Vec3 accel0, mag0;
   bool have_mag0 = false;
@@ -70,15 +73,18 @@ bool mlNegativeLogLikelihood(const MlModel<T>& model, const MlData& data, T& cos
   if (residuals) residuals->assign(data.samples.size(), MlResidual{});
   for (std::size_t i = 0; i < data.samples.size(); ++i) {
     const MlSample& s = data.samples[i];
-    ekf.predict(s.gyro_rad_s, s.dt_s);
-    const InnovationTerm<T> a = ekf.updateAccel(s.accel_m_s2);
+    ekf.predict(s.gyro_rad_s, s.dt_s, s.gyro_noise_dt2_s2);
+    const InnovationTerm<T> a = s.accel_count > 1
+                                    ? ekf.updateAccelMean(s.accel_m_s2, s.accel_mean_rotation, s.accel_count)
+                                    : ekf.updateAccel(s.accel_m_s2);
     if (!a.ok) return false;
     cost += a.cost;
     if (residuals) {
       for (int k = 0; k < 3; ++k) (*residuals)[i].accel(k) = scalarPart(a.normalised(k));
     }
     if (s.has_mag) {
-      const InnovationTerm<T> m = ekf.updateMag(s.mag_unit);
+      const InnovationTerm<T> m = s.mag_count > 1 ? ekf.updateMagMean(s.mag_unit, s.mag_mean_rotation, s.mag_count)
+                                                  : ekf.updateMag(s.mag_unit);
       if (!m.ok) return false;
       cost += m.cost;
       if (residuals) {
