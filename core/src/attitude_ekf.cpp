@@ -17,29 +17,75 @@ Eigen::Matrix<double, 4, 3> earthAxisDirections(const Vec4& q) {
   return g;
 }
 
+// rotateEarthToBody and its Jacobian (eqs. 2.30, 3.5) for f_n = (0, 0, -g), with the terms
+// that multiply the zero north and east components left out (the results are the same).
+Vec3 gravityInBody(const Vec4& q, double down_m_s2) {
+  const double q0 = q(0), q1 = q(1), q2 = q(2), q3 = q(3);
+  return {2 * (q1 * q3 - q0 * q2) * down_m_s2, 2 * (q2 * q3 + q0 * q1) * down_m_s2,
+          (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * down_m_s2};
+}
+
+Mat34 gravityInBodyJacobian(const Vec4& q, double down_m_s2) {
+  const double q0 = q(0), q1 = q(1), q2 = q(2), q3 = q(3), z = down_m_s2;
+  Mat34 h;
+  h << -q2 * z, q3 * z, -q0 * z, q1 * z,  //
+      q1 * z, q0 * z, q3 * z, q2 * z,     //
+      q0 * z, -q1 * z, -q2 * z, q3 * z;
+  return 2.0 * h;
+}
+
+// Inverse of a symmetric positive definite 3×3 matrix (S of eq. 3.6) by its adjugate: the
+// same cofactor formula as Eigen's general inverse, with the six distinct cofactors only.
+Mat3 symmetricInverse(const Mat3& S) {
+  const double a = S(0, 0), b = S(0, 1), c = S(0, 2), d = S(1, 1), e = S(1, 2), f = S(2, 2);
+  const double c00 = d * f - e * e, c01 = c * e - b * f, c02 = b * e - c * d;
+  const double c11 = a * f - c * c, c12 = b * c - a * e, c22 = a * d - b * b;
+  const double inverse_det = 1.0 / (a * c00 + b * c01 + c * c02);
+  Mat3 inverse;
+  inverse << c00, c01, c02,  //
+      c01, c11, c12,         //
+      c02, c12, c22;
+  return inverse_det * inverse;
+}
+
 }  // namespace
 
 AttitudeEkf::AttitudeEkf() : q_(1.0, 0.0, 0.0, 0.0), P_(1000.0 * Mat4::Identity()) {}
 
 void AttitudeEkf::predict(const Quat& increment, double dt_s, double gyro_noise_rad_s) {
   const Mat4 F = rightMultiplicationMatrix(increment);  // eq. 3.2 in closed form
-  const Mat43 xi = rightProductMatrix(q_);
   const double s = 0.5 * dt_s * gyro_noise_rad_s;
+  const double s2 = s * s;
+  // Q = s² Ξ Ξᵀ = s² (|q|² I - q qᵀ): q and the three columns of Ξ(q) are orthogonal, each of
+  // length |q| (together they form the left-multiplication matrix of q). P stays symmetric, so
+  // only its upper triangle is computed and mirrored.
+  const double q_norm2 = q_.squaredNorm();
+  const Mat4 FP = F * P_;
+  Mat4 P;
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i <= j; ++i) {
+      const double q_term = (i == j ? q_norm2 : 0.0) - q_(i) * q_(j);
+      P(i, j) = P(j, i) = FP.row(i).dot(F.row(j)) + s2 * q_term;  // eq. 3.3
+    }
+  }
+  P_ = P;
   q_ = F * q_;
-  P_ = F * P_ * F.transpose() + (s * s) * xi * xi.transpose();  // eq. 3.3
   normalise();
   // F is orthogonal and Q lies in the tangent space of q, so P stays orthogonal to q (up to
   // rounding, which the next update's re-expression of P removes).
 }
 
 void AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2) {
-  const Vec3 f_n(0.0, 0.0, -gravity_m_s2);
-  const Mat34 H = rotateEarthToBodyJacobian(q_, f_n);  // eq. 3.5
-  const Mat3 S = H * P_ * H.transpose() + (accel_noise_m_s2 * accel_noise_m_s2) * Mat3::Identity();
-  const Mat43 K = P_ * H.transpose() * S.inverse();  // eq. 3.6
+  const double f_down = -gravity_m_s2;  // f_n = (0, 0, -g)
+  const Mat34 H = gravityInBodyJacobian(q_, f_down);  // eq. 3.5
+  // P is symmetric, so P Hᵀ = (H P)ᵀ: one product serves S, K and the update of P.
+  const Mat34 HP = H * P_;
+  Mat3 S = HP * H.transpose();
+  S.diagonal().array() += accel_noise_m_s2 * accel_noise_m_s2;
+  const Mat43 K = HP.transpose() * symmetricInverse(S);  // eq. 3.6
   const Vec4 q_prior = q_;  // P below belongs to this linearisation point
-  q_ += K * (accel_m_s2 - rotateEarthToBody(q_, f_n));  // eq. 3.7a (EKF form 2.9a)
-  P_ -= K * (H * P_);  // eq. 3.7b; kept symmetric by keepHeadingOutOfTilt below
+  q_ += K * (accel_m_s2 - gravityInBody(q_, f_down));  // eq. 3.7a (EKF form 2.9a)
+  P_ -= K * HP;  // eq. 3.7b; kept symmetric by keepHeadingOutOfTilt below
   normalise();  // eq. 3.8
   keepHeadingOutOfTilt(q_prior);
 }
@@ -52,11 +98,21 @@ void AttitudeEkf::keepHeadingOutOfTilt(const Vec4& q_prior) {
   // same carry as in setAttitude) and the heading-tilt terms are dropped.
   const Eigen::Matrix<double, 4, 3> before = earthAxisDirections(q_prior);
   const Eigen::Matrix<double, 4, 3> after = earthAxisDirections(q_);
-  Mat3 about_ned_axes = before.transpose() * P_ * before;
-  about_ned_axes = 0.5 * (about_ned_axes + about_ned_axes.transpose()).eval();
-  about_ned_axes.block<2, 1>(0, 2).setZero();
-  about_ned_axes.block<1, 2>(2, 0).setZero();
-  P_ = after * about_ned_axes * after.transpose();
+  // Only the entries of P about the NED axes that survive are computed: the tilt block
+  // (symmetrised) and the heading variance.
+  const Eigen::Matrix<double, 4, 3> P_before = P_ * before;
+  const double tilt_xx = before.col(0).dot(P_before.col(0));
+  const double tilt_xy = 0.5 * (before.col(0).dot(P_before.col(1)) + before.col(1).dot(P_before.col(0)));
+  const double tilt_yy = before.col(1).dot(P_before.col(1));
+  const double heading = before.col(2).dot(P_before.col(2));
+  // P = after · [[xx, xy, 0], [xy, yy, 0], [0, 0, heading]] · afterᵀ, written out (symmetric).
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i <= j; ++i) {
+      const double gx_i = after(i, 0), gy_i = after(i, 1), gx_j = after(j, 0), gy_j = after(j, 1);
+      P_(i, j) = P_(j, i) = tilt_xx * gx_i * gx_j + tilt_xy * (gx_i * gy_j + gy_i * gx_j) +
+                            tilt_yy * gy_i * gy_j + heading * after(i, 2) * after(j, 2);
+    }
+  }
 }
 
 void AttitudeEkf::setAttitude(const Quat& q_nb) {
@@ -72,17 +128,26 @@ void AttitudeEkf::setAttitude(const Quat& q_nb) {
 }
 
 void AttitudeEkf::turnHeading(double angle_rad) {
-  const Quat turned = headingRotation(angle_rad) * fromWxyz(q_);
+  // headingRotation(angle) ⊗ q written out: the turn (cos ½a, 0, 0, sin ½a) has only w and z.
+  // It is the exponential of the rotation vector (0, 0, a), which gyroIncrement computes
+  // without std::sin and std::cos for the small angles of the observer.
+  const Quat turn = gyroIncrement(Vec3(0.0, 0.0, angle_rad), 1.0);
+  const double c = turn.w(), s = turn.z();
+  const Vec4 turned(c * q_(0) - s * q_(3), c * q_(1) - s * q_(2), c * q_(2) + s * q_(1), c * q_(3) + s * q_(0));
   if (std::abs(angle_rad) >= 0.01) {
-    setAttitude(turned);
+    setAttitude(fromWxyz(turned));
     return;
   }
-  q_ = toWxyz(turned);
+  q_ = turned;
   normalise();
 }
 
 void AttitudeEkf::normalise() {
-  q_ /= q_.norm();
+  // After a rotation (predict, a small turnHeading) |q|² is 1 to a few ulps, and there
+  // 1/|q| = 1.5 - 0.5|q|² to rounding (the next term, 3/8 (|q|² - 1)², is below 4e-17): the
+  // square root and the division are needed only after a measurement update.
+  const double norm2 = q_.squaredNorm();
+  q_ *= std::abs(norm2 - 1.0) < 1e-8 ? 1.5 - 0.5 * norm2 : 1.0 / std::sqrt(norm2);
   // q and -q are the same rotation; keeping w ≥ 0 keeps the state continuous for output.
   if (q_(0) < 0.0) q_ = -q_;
 }

@@ -1,5 +1,6 @@
 #include "headingd/core/mag_heading_observer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 
@@ -8,9 +9,12 @@ namespace headingd::core {
 MagHeadingMeasurement measureMagHeading(const Quat& q_nb, const Vec3& mag_uT, double min_horizontal_fraction) {
   MagHeadingMeasurement m;
   const Vec3 field_n = q_nb * mag_uT;
-  const double total = field_n.norm();
-  m.horizontal_uT = field_n.head<2>().norm();
-  if (!(total > 0.0) || m.horizontal_uT < min_horizontal_fraction * total) return m;
+  // The fraction test on squares: one square root fewer per sample.
+  const double horizontal2 = field_n.head<2>().squaredNorm();
+  const double total2 = horizontal2 + field_n.z() * field_n.z();
+  m.horizontal_uT = std::sqrt(horizontal2);
+  const double min_fraction = std::max(min_horizontal_fraction, 0.0);
+  if (!(total2 > 0.0) || horizontal2 < min_fraction * min_fraction * total2) return m;
   m.dip_rad = std::atan2(field_n.z(), m.horizontal_uT);
   m.innovation_rad = -std::atan2(field_n.y(), field_n.x());
   m.valid = true;
