@@ -129,6 +129,11 @@ TEST(CalibrateTool, TooLittleRotationExitsWithThree) {
   EXPECT_EQ(run(std::string(HEADINGD_CALIBRATE_TOOL) + " --imu-csv " + (dir / "still.csv").string() +
                 " --method magic --out " + (dir / "x.toml").string()),
             2);
+  // Options the command-line parser refuses exit with 2 as well.
+  EXPECT_EQ(run(std::string(HEADINGD_CALIBRATE_TOOL) + " --imu-csv " + (dir / "still.csv").string() +
+                " --method ml --ml-gradient guess --out " + (dir / "x.toml").string()),
+            2);
+  EXPECT_EQ(run(std::string(HEADINGD_CALIBRATE_TOOL) + " --out " + (dir / "x.toml").string()), 2);  // no --imu-csv
   fs::remove_all(dir);
 }
 

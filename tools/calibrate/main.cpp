@@ -77,6 +77,12 @@ int main(int argc, char** argv) {
   app.add_option("--date", date, "date YYYY-MM-DD, for the WMM field");
   app.add_option("--wmm", wmm_path, "WMM coefficient file (NOAA COF)")->capture_default_str();
   std::size_t ml_decimation = 1;
+  std::string ml_gradient = "reverse";
+  app.add_option("--ml-gradient", ml_gradient,
+                 "ml: how the likelihood's gradient is computed: reverse (exact, reverse mode; the fastest), jets "
+                 "(exact, Ceres forward-mode Jets), forward or central (numerical differences); for comparisons")
+      ->check(CLI::IsMember({"reverse", "jets", "forward", "central"}))
+      ->capture_default_str();
   app.add_option("--ml-decimation", ml_decimation,
                  "ml: the likelihood on every n-th sample, the gyro pre-integrated between (for minutes of data)")
       ->capture_default_str();
@@ -89,7 +95,12 @@ int main(int argc, char** argv) {
   app.footer("Without --field-uT or --lat/--lon/--date the field norm is taken from the data (D scaled to unit "
              "determinant) and the file says so. Exit codes: 0 written, 1 file error, 2 bad arguments, 3 the data "
              "cannot give a calibration (the message says why).");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints the help or the message
+    return code == 0 ? 0 : 2;      // exit code 2 for every bad argument, as the footer says
+  }
   if (method != "thesis" && method != "ellipsoid" && method != "ml") {
     std::fprintf(stderr, "headingd-calibrate: --method must be thesis, ellipsoid or ml (got '%s')\n", method.c_str());
     return 2;
@@ -288,6 +299,10 @@ int main(int argc, char** argv) {
       o.initial.field_norm_uT = *field.norm_uT;
       withPlace(o.initial);
       o.decimation = std::max<std::size_t>(ml_decimation, 1);
+      o.gradient = ml_gradient == "jets"      ? calib::MlGradient::kAutomatic
+                   : ml_gradient == "forward" ? calib::MlGradient::kNumericForward
+                   : ml_gradient == "central" ? calib::MlGradient::kNumericCentral
+                                              : calib::MlGradient::kAdjoint;
       if (!segments.empty()) {
         o.initial.stationary_begin = segments.front().begin;
         o.initial.stationary_count = std::min<std::size_t>(segments.front().size(), 500);

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "headingd/calib/calibration_error.hpp"
+#include "headingd/calib/ml_adjoint_gradient.hpp"
 
 namespace headingd::calib {
 
@@ -30,6 +31,19 @@ class MlValueFunctor {
   const MlData* data_;
 };
 
+// The cost with its gradient by reverse mode (ml_adjoint_gradient.hpp).
+class MlAdjointFunction : public ceres::FirstOrderFunction {
+ public:
+  explicit MlAdjointFunction(const MlData* data) : data_(data) {}
+  bool Evaluate(const double* theta, double* cost, double* gradient) const override {
+    return mlCostWithAdjointGradient(*data_, theta, *cost, gradient);
+  }
+  int NumParameters() const override { return kMlParameterCount; }
+
+ private:
+  const MlData* data_;
+};
+
 std::unique_ptr<ceres::FirstOrderFunction> makeFunction(const MlData* data, MlGradient method) {
   switch (method) {
     case MlGradient::kNumericCentral:
@@ -38,6 +52,8 @@ std::unique_ptr<ceres::FirstOrderFunction> makeFunction(const MlData* data, MlGr
     case MlGradient::kNumericForward:
       return std::make_unique<ceres::NumericDiffFirstOrderFunction<MlValueFunctor, ceres::FORWARD, kMlParameterCount>>(
           new MlValueFunctor(data));
+    case MlGradient::kAdjoint:
+      return std::make_unique<MlAdjointFunction>(data);
     case MlGradient::kAutomatic:
     default:
       return std::make_unique<ceres::AutoDiffFirstOrderFunction<MlCostFunctor, kMlParameterCount>>(

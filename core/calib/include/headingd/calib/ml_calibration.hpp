@@ -4,11 +4,12 @@
 // θ = {D, o, dip, δω, Σω, Σa, Σm} through the EKF one-step-ahead predictor (ml_ekf.hpp).
 //
 // K&S use numerical gradients and call step 2 computationally expensive (§5.2, §9). Here the
-// gradient is exact: the cost is templated on the scalar and Ceres's Jets carry the 34
-// derivatives through the EKF (forward-mode automatic differentiation); the minimiser is
-// Ceres's quasi-Newton LBFGS with a Wolfe line search (ceres::GradientProblemSolver).
-// Numerical gradients of the same cost (ceres::NumericDiffFirstOrderFunction) stay
-// selectable, to measure what automatic differentiation saves.
+// gradient is exact: the cost is templated on the scalar, and by default one reverse-mode
+// sweep over a tape of the EKF gives the 34 derivatives (ml_adjoint_gradient.hpp); Ceres's
+// Jets (forward mode, 34 derivatives through every operation) give the same gradient more
+// slowly. The minimiser is Ceres's quasi-Newton LBFGS with a Wolfe line search
+// (ceres::GradientProblemSolver). Jets and numerical gradients of the same cost
+// (ceres::NumericDiffFirstOrderFunction) stay selectable, to measure what each saves.
 //
 // No clocks here (DESIGN.md: core is pure): the callers time the two steps
 // (prepareMaximumLikelihood, refineMaximumLikelihood) themselves.
@@ -25,14 +26,15 @@
 namespace headingd::calib {
 
 enum class MlGradient {
-  kAutomatic,       // ceres::Jet, exact
+  kAdjoint,         // reverse mode on a tape (ml_adjoint_gradient.hpp), exact
+  kAutomatic,       // ceres::Jet, forward mode, exact
   kNumericCentral,  // ceres::NumericDiffFirstOrderFunction, central differences (2n + 1 costs)
   kNumericForward,  // forward differences (n + 1 costs), as cheap as numerical gets
 };
 
 struct MlCalibrationOptions {
   MlInitialOptions initial;  // field norm, stationary segment, ...
-  MlGradient gradient = MlGradient::kAutomatic;
+  MlGradient gradient = MlGradient::kAdjoint;
   int max_iterations = 500;
   double function_tolerance = 1e-9;   // relative change of the cost that stops the search
   double gradient_tolerance = 1e-8;

@@ -164,6 +164,13 @@ class MlEkf {
     P_ = Mat3T<T>::Identity() * T(attitude_sigma_rad * attitude_sigma_rad);
   }
 
+  // The state exactly as given (no normalisation): to restart the recursion at a step
+  // stored earlier (ml_adjoint_gradient.cpp).
+  void setState(const QuatT<T>& q_nb, const Mat3T<T>& P) {
+    q_nb_ = q_nb;
+    P_ = P;
+  }
+
   // Time update with the gyro over dt (K&S eq. 1a, 15): q̃ ← q̃ ⊗ exp(T(y_ω - δω)/2).
   // `noise_dt2_s2` is Σ dt_i² of the gyro samples behind this step: dt² for one sample, less
   // than dt² when several were pre-integrated (ml_data.hpp, decimation), whose independent

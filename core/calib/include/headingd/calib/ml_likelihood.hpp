@@ -42,14 +42,10 @@ inline void initialMeans(const MlData& data, core::Vec3& accel, core::Vec3& mag,
   if (have_mag) mag /= static_cast<double>(mags);
 }
 
-// Runs the EKF over `data` with `model` and returns the cost of eq. 6 (without the constant
-// 3 log 2π per factor). False if an innovation covariance stops being positive definite or
-// the cost is not finite; `residuals`, when given, receives one entry per sample.
+// The predictor's start: false when `model` is outside θ's domain, else `ekf` initialised
+// from the first samples.
 template <typename T>
-bool mlNegativeLogLikelihood(const MlModel<T>& model, const MlData& data, T& cost,
-                             std::vector<MlResidual>* residuals = nullptr) {
-  using std::isfinite;
-  cost = T(0.0);
+bool mlStartPredictor(const MlModel<T>& model, const MlData& data, MlEkf<T>& ekf) {
   if (data.samples.empty()) return false;
   // Two mirror modes fit the magnetometer almost as well and give headings wrong by up to
   // 180° (seen in 3 of 30 K&S §8 runs): a dip beyond ±90° (the field's horizontal part
@@ -61,7 +57,6 @@ bool mlNegativeLogLikelihood(const MlModel<T>& model, const MlData& data, T& cos
       !dipAgrees(model.field_n.z(), data.expected_dip_sign)) {
     return false;
   }
-  MlEkf<T> ekf(model, data.gravity_m_s2);
   core::Vec3 accel0, mag0;
   bool have_mag0 = false;
   initialMeans(data, accel0, mag0, have_mag0);
@@ -70,30 +65,51 @@ bool mlNegativeLogLikelihood(const MlModel<T>& model, const MlData& data, T& cos
   } else {
     ekf.initialiseFromGravity(accel0.cast<T>(), kMlInitialAttitudeSigma_rad);
   }
+  return true;
+}
+
+// One step t of the predictor: the time update with the sample's gyro, then its accelerometer
+// and (when it has one) magnetometer factors of eq. 6, added to `cost`. False if an
+// innovation covariance is not positive definite. `residual`, when given, receives the
+// normalised innovations.
+template <typename T>
+bool mlPredictorStep(MlEkf<T>& ekf, const MlSample& s, T& cost, MlResidual* residual) {
+  ekf.predict(s.gyro_rad_s, s.dt_s, s.gyro_noise_dt2_s2);
+  const InnovationTerm<T> a = s.accel_count > 1 ? ekf.updateAccelMean(s.accel_m_s2, s.accel_mean_rotation, s.accel_count)
+                                                : ekf.updateAccel(s.accel_m_s2);
+  if (!a.ok) return false;
+  cost += a.cost;
+  if (residual) {
+    for (int k = 0; k < 3; ++k) residual->accel(k) = scalarPart(a.normalised(k));
+  }
+  if (s.has_mag) {
+    const InnovationTerm<T> m = s.mag_count > 1 ? ekf.updateMagMean(s.mag_unit, s.mag_mean_rotation, s.mag_count)
+                                                : ekf.updateMag(s.mag_unit);
+    if (!m.ok) return false;
+    cost += m.cost;
+    if (residual) {
+      for (int k = 0; k < 3; ++k) residual->mag(k) = scalarPart(m.normalised(k));
+      residual->has_mag = true;
+    }
+  } else if (residual) {
+    residual->mag.setConstant(std::nan(""));
+  }
+  return true;
+}
+
+// Runs the EKF over `data` with `model` and returns the cost of eq. 6 (without the constant
+// 3 log 2π per factor). False if an innovation covariance stops being positive definite or
+// the cost is not finite; `residuals`, when given, receives one entry per sample.
+template <typename T>
+bool mlNegativeLogLikelihood(const MlModel<T>& model, const MlData& data, T& cost,
+                             std::vector<MlResidual>* residuals = nullptr) {
+  using std::isfinite;
+  cost = T(0.0);
+  MlEkf<T> ekf(model, data.gravity_m_s2);
+  if (!mlStartPredictor(model, data, ekf)) return false;
   if (residuals) residuals->assign(data.samples.size(), MlResidual{});
   for (std::size_t i = 0; i < data.samples.size(); ++i) {
-    const MlSample& s = data.samples[i];
-    ekf.predict(s.gyro_rad_s, s.dt_s, s.gyro_noise_dt2_s2);
-    const InnovationTerm<T> a = s.accel_count > 1
-                                    ? ekf.updateAccelMean(s.accel_m_s2, s.accel_mean_rotation, s.accel_count)
-                                    : ekf.updateAccel(s.accel_m_s2);
-    if (!a.ok) return false;
-    cost += a.cost;
-    if (residuals) {
-      for (int k = 0; k < 3; ++k) (*residuals)[i].accel(k) = scalarPart(a.normalised(k));
-    }
-    if (s.has_mag) {
-      const InnovationTerm<T> m = s.mag_count > 1 ? ekf.updateMagMean(s.mag_unit, s.mag_mean_rotation, s.mag_count)
-                                                  : ekf.updateMag(s.mag_unit);
-      if (!m.ok) return false;
-      cost += m.cost;
-      if (residuals) {
-        for (int k = 0; k < 3; ++k) (*residuals)[i].mag(k) = scalarPart(m.normalised(k));
-        (*residuals)[i].has_mag = true;
-      }
-    } else if (residuals) {
-      (*residuals)[i].mag.setConstant(std::nan(""));
-    }
+    if (!mlPredictorStep(ekf, data.samples[i], cost, residuals ? &(*residuals)[i] : nullptr)) return false;
   }
   return isfinite(cost);
 }
