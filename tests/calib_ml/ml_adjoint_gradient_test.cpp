@@ -9,35 +9,13 @@
 
 #include "headingd/calib/ml_adjoint_gradient.hpp"
 #include "headingd/calib/ml_calibration.hpp"
-#include "headingd/calib_montecarlo/ks_simulation.hpp"
+#include "ml_cost_fixture.hpp"
 
 namespace headingd::calib {
 namespace {
 
-struct Fixture {
-  MlData data;
-  MlParameters theta{};
-};
-
-// A short K&S §8 run (100 samples at rest, 300 rotating), θ moved off the initial estimate
-// so that no component of the gradient is accidentally zero.
-Fixture makeFixture(std::size_t decimation) {
-  const calib_montecarlo::KsRun run =
-      calib_montecarlo::simulateKokSchonRun(calib_montecarlo::KsVariant::kShort, 7, {0.3, true});
-  MlInitialOptions o;
-  o.field_norm_uT = run.truth.field_norm_uT;
-  o.ellipsoid_min_coverage = 0.1;
-  const MlInitialEstimate init = estimateInitialParameters(run.samples, o);
-  MlDataOptions d;
-  d.field_norm_uT = o.field_norm_uT;
-  d.gravity_m_s2 = init.gravity_m_s2;
-  d.decimation = decimation;
-  Fixture f;
-  f.data = prepareMlData(run.samples, d);
-  f.theta = packParameters(initialParameterValues(init, o));
-  for (int i = 0; i < kMlParameterCount; ++i) f.theta[i] += 0.01 * std::sin(1.0 + i);
-  return f;
-}
+using Fixture = test::MlCostFixture;
+using test::makeMlCostFixture;
 
 double costAt(const Fixture& f, const MlParameters& theta) {
   double c = 0.0;
@@ -57,7 +35,7 @@ double centralDerivative(const Fixture& f, int i, double h) {
 }
 
 TEST(MlAdjointGradient, ValueEqualsDoubleValue) {
-  const Fixture f = makeFixture(1);
+  const Fixture f = makeMlCostFixture(1);
   double plain = 0.0, with_gradient = 0.0;
   MlParameters gradient{};
   ASSERT_TRUE(mlCostWithAdjointGradient(f.data, f.theta.data(), plain, nullptr));
@@ -78,12 +56,12 @@ void expectMatchesJets(const Fixture& f) {
   }
 }
 
-TEST(MlAdjointGradient, MatchesJetGradient) { expectMatchesJets(makeFixture(1)); }
+TEST(MlAdjointGradient, MatchesJetGradient) { expectMatchesJets(makeMlCostFixture(1)); }
 
-TEST(MlAdjointGradient, MatchesJetGradientWithDecimation) { expectMatchesJets(makeFixture(4)); }
+TEST(MlAdjointGradient, MatchesJetGradientWithDecimation) { expectMatchesJets(makeMlCostFixture(4)); }
 
 TEST(MlAdjointGradient, MatchesCentralDifferences) {
-  const Fixture f = makeFixture(1);
+  const Fixture f = makeMlCostFixture(1);
   double cost = 0.0;
   MlParameters g{};
   ASSERT_TRUE(mlCostWithAdjointGradient(f.data, f.theta.data(), cost, g.data()));
@@ -100,7 +78,7 @@ TEST(MlAdjointGradient, MatchesCentralDifferences) {
 }
 
 TEST(MlAdjointGradient, FailsWhereTheCostFails) {
-  Fixture f = makeFixture(1);
+  Fixture f = makeMlCostFixture(1);
   // det D < 0: outside θ's domain (ml_likelihood.hpp).
   for (int c = 0; c < 3; ++c) f.theta[ml_index::kD + c] = -f.theta[ml_index::kD + c];
   double cost = 0.0;

@@ -5,36 +5,16 @@
 #include <cmath>
 
 #include "headingd/calib/ml_calibration.hpp"
-#include "headingd/calib_montecarlo/ks_simulation.hpp"
+#include "ml_cost_fixture.hpp"
 
 namespace headingd::calib {
 namespace {
 
-struct Fixture {
-  MlData data;
-  MlParameters theta{};
-};
-
-Fixture makeFixture() {
-  const calib_montecarlo::KsRun run =
-      calib_montecarlo::simulateKokSchonRun(calib_montecarlo::KsVariant::kShort, 7, {0.3, true});
-  MlInitialOptions o;
-  o.field_norm_uT = run.truth.field_norm_uT;
-  o.ellipsoid_min_coverage = 0.1;
-  const MlInitialEstimate init = estimateInitialParameters(run.samples, o);
-  MlDataOptions d;
-  d.field_norm_uT = o.field_norm_uT;
-  d.gravity_m_s2 = init.gravity_m_s2;
-  Fixture f;
-  f.data = prepareMlData(run.samples, d);
-  f.theta = packParameters(initialParameterValues(init, o));
-  // Move away from the initial estimate so that no gradient component is accidentally zero.
-  for (int i = 0; i < kMlParameterCount; ++i) f.theta[i] += 0.01 * std::sin(1.0 + i);
-  return f;
-}
+using Fixture = test::MlCostFixture;
+using test::makeMlCostFixture;
 
 TEST(MlCost, JetValueEqualsDoubleValue) {
-  const Fixture f = makeFixture();
+  const Fixture f = makeMlCostFixture();
   double plain = 0.0, with_gradient = 0.0;
   MlParameters gradient{};
   ASSERT_TRUE(evaluateMlCost(f.data, f.theta, MlGradient::kAutomatic, plain, nullptr));
@@ -44,7 +24,7 @@ TEST(MlCost, JetValueEqualsDoubleValue) {
 }
 
 TEST(MlCost, AutomaticGradientMatchesCentralDifferences) {
-  const Fixture f = makeFixture();
+  const Fixture f = makeMlCostFixture();
   double c_ad = 0.0, c_nd = 0.0;
   MlParameters g_ad{}, g_nd{};
   ASSERT_TRUE(evaluateMlCost(f.data, f.theta, MlGradient::kAutomatic, c_ad, &g_ad));
@@ -59,7 +39,7 @@ TEST(MlCost, AutomaticGradientMatchesCentralDifferences) {
 }
 
 TEST(MlCost, RejectsANonPositiveDefiniteInnovation) {
-  Fixture f = makeFixture();
+  Fixture f = makeMlCostFixture();
   // D = 0 and Σm → 0: the magnetometer innovation covariance vanishes.
   for (int i = 0; i < 9; ++i) f.theta[ml_index::kD + i] = 0.0;
   for (int i : {0, 2, 5}) f.theta[ml_index::kMagCov + i] = -400.0;
@@ -70,7 +50,7 @@ TEST(MlCost, RejectsANonPositiveDefiniteInnovation) {
 // The mirror of the other dip sign is outside θ's domain once the place is known: the cost
 // at a negative dip is refused with kDown and accepted without a sign.
 TEST(MlCost, RefusesTheDipSignThePlaceRulesOut) {
-  Fixture f = makeFixture();
+  Fixture f = makeMlCostFixture();
   f.theta[ml_index::kDip] = -std::abs(f.theta[ml_index::kDip]);
   double cost = 0.0;
   f.data.expected_dip_sign = DipSign::kUnknown;
