@@ -1,4 +1,5 @@
 #include "headingd/core/imu_calibration_toml.hpp"
+#include "headingd/core/toml_document.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -122,14 +123,7 @@ std::string quoted(const std::string& s) {
 }  // namespace
 
 ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string& source) {
-  toml::table doc;
-  try {
-    doc = toml::parse(toml_text, source);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream o;
-    o << source << ":" << e.source().begin.line << ": TOML syntax error: " << e.description();
-    throw ConfigError(o.str());
-  }
+  toml::table doc = parseTomlDocument(toml_text, source);
   for (auto&& [key, node] : doc) {
     const std::string k(key.str());
     if (k != "calibration" && k != "magnetometer" && k != "gyroscope" && k != "accelerometer" && k != "quality") {

@@ -5,36 +5,31 @@
 
 namespace headingd::core {
 
-void MagCalibrationFit::Strength::update(double norm, double alpha) {
-  if (!started) {
-    low_pass = norm;
-    started = true;
-    return;
-  }
-  low_pass += alpha * (norm - low_pass);
-  const double relative = (norm - low_pass) / std::max(low_pass, 1e-9);
-  variance += alpha * (relative * relative - variance);
+void MagCalibrationFit::Strength::update(double norm, double dt_s) {
+  const double m = mean.update(norm, dt_s);  // the first sample initialises both to no deviation
+  const double relative = (norm - m) / std::max(m, 1e-9);
+  variance.update(relative * relative, dt_s);
 }
 
-double MagCalibrationFit::rawFluctuation() const { return std::sqrt(raw_.variance); }
-double MagCalibrationFit::calibratedFluctuation() const { return std::sqrt(calibrated_.variance); }
+double MagCalibrationFit::rawFluctuation() const { return std::sqrt(raw_.variance.value()); }
+double MagCalibrationFit::calibratedFluctuation() const { return std::sqrt(calibrated_.variance.value()); }
 
 bool MagCalibrationFit::fitsBetter(const Strength& other, const Strength& in_use) const {
   const double floor = p_.min_relative_fluctuation * p_.min_relative_fluctuation;
-  if (in_use.variance > floor && in_use.variance > p_.variance_ratio * other.variance) return true;
+  const double in_use_variance = in_use.variance.value(), other_variance = other.variance.value();
+  if (in_use_variance > floor && in_use_variance > p_.variance_ratio * other_variance) return true;
   if (!(expected_norm_uT_ > 0.0)) return false;
-  const double in_use_error = std::abs(in_use.low_pass / expected_norm_uT_ - 1.0);
-  const double other_error = std::abs(other.low_pass / expected_norm_uT_ - 1.0);
+  const double in_use_error = std::abs(in_use.mean.value() / expected_norm_uT_ - 1.0);
+  const double other_error = std::abs(other.mean.value() / expected_norm_uT_ - 1.0);
   return in_use_error > p_.max_relative_strength_error && other_error < p_.strength_error_ratio * in_use_error;
 }
 
 bool MagCalibrationFit::update(const Vec3& raw_uT, const Vec3& calibrated_uT, double dt_s) {
   const double raw_norm = raw_uT.norm(), calibrated_norm = calibrated_uT.norm();
   if (!std::isfinite(raw_norm) || !std::isfinite(calibrated_norm) || !(dt_s >= 0.0)) return calibrated_in_use_;
-  // First-order low-pass with time constant τ: α = 1 − exp(−dt/τ).
-  const double alpha = 1.0 - std::exp(-std::min(dt_s, 1.0) / p_.time_constant_s);
-  raw_.update(raw_norm, alpha);
-  calibrated_.update(calibrated_norm, alpha);
+  // A clock jump must not wipe the history in one step.
+  raw_.update(raw_norm, std::min(dt_s, 1.0));
+  calibrated_.update(calibrated_norm, std::min(dt_s, 1.0));
 
   const Strength& in_use = calibrated_in_use_ ? calibrated_ : raw_;
   const Strength& other = calibrated_in_use_ ? raw_ : calibrated_;

@@ -1,4 +1,5 @@
 #include "headingd/daemon/config.hpp"
+#include "headingd/core/toml_document.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -71,13 +72,7 @@ const char* atEndName(AtEnd a) {
 }
 
 DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source, const std::string& base_dir) {
-  toml::table doc;
-  try {
-    doc = toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    throw core::ConfigError(source + ":" + std::to_string(e.source().begin.line) +
-                            ": TOML syntax error: " + std::string(e.description()));
-  }
+  toml::table doc = core::parseTomlDocument(text, source);
 
   std::string expected;
   for (const char* t : kTables) expected += (expected.empty() ? "[" : ", [") + std::string(t) + "]";

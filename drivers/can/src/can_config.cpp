@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "headingd/can/can_config_toml.hpp"
+#include "headingd/core/toml_document.hpp"
 
 namespace headingd::can {
 namespace {
@@ -154,13 +155,7 @@ CanConfig parseCanTable(const toml::table& table, const std::string& source, con
 }
 
 CanConfig parseCanConfig(std::string_view toml_text, const std::string& source, const std::string& config_dir) {
-  toml::table doc;
-  try {
-    doc = toml::parse(toml_text, source);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(source + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
-                      std::string(e.description()));
-  }
+  toml::table doc = core::parseTomlDocument(toml_text, source);
   const toml::node* can = doc.get("can");
   if (can == nullptr) throw ConfigError(source + ": missing table [can]");
   if (!can->is_table()) {

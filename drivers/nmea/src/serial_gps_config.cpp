@@ -1,4 +1,5 @@
 #include "headingd/nmea/serial_gps_config.hpp"
+#include "headingd/core/toml_document.hpp"
 
 #include <array>
 #include <sstream>
@@ -99,15 +100,7 @@ SerialGpsConfig parseGpsConfig(const toml::table& doc, const std::string& source
 }
 
 SerialGpsConfig parseGpsConfigText(std::string_view toml_text, const std::string& source) {
-  toml::table doc;
-  try {
-    doc = toml::parse(toml_text, source);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream o;
-    o << source << ":" << e.source().begin.line << ": TOML syntax error: " << e.description();
-    throw ConfigError(o.str());
-  }
-  return parseGpsConfig(doc, source);
+  return parseGpsConfig(core::parseTomlDocument(toml_text, source), source);
 }
 
 }  // namespace headingd::nmea

@@ -17,6 +17,7 @@
 
 #include "headingd/core/imu_calibration.hpp"
 #include "headingd/core/imu_sample.hpp"
+#include "headingd/core/low_pass.hpp"
 
 namespace headingd::core {
 
@@ -43,7 +44,7 @@ class MagCalibrationFit {
   // expected_norm_uT: the field strength the calibration was scaled to (MagCalibration::
   // field_norm_uT); 0 = not stated, then only the fluctuation test is made.
   explicit MagCalibrationFit(const MagCalibrationFitParams& p = {}, double expected_norm_uT = 0.0)
-      : p_(p), expected_norm_uT_(expected_norm_uT) {}
+      : p_(p), expected_norm_uT_(expected_norm_uT), raw_(p.time_constant_s), calibrated_(p.time_constant_s) {}
 
   // Feeds one pair of readings (µT) dt_s after the previous one; returns whether the
   // calibrated reading is the one to use.
@@ -53,17 +54,18 @@ class MagCalibrationFit {
   std::uint64_t setAside() const { return set_aside_; }  // calibrated → raw switches
   std::uint64_t takenBack() const { return taken_back_; }  // raw → calibrated switches
   // For diagnostics: the low-passed strengths (µT) and their relative RMS fluctuation.
-  double rawStrength() const { return raw_.low_pass; }
-  double calibratedStrength() const { return calibrated_.low_pass; }
+  double rawStrength() const { return raw_.mean.value(); }
+  double calibratedStrength() const { return calibrated_.mean.value(); }
   double rawFluctuation() const;
   double calibratedFluctuation() const;
 
  private:
+  // A strength's low-pass and the low-pass of its squared relative deviation from it.
   struct Strength {
-    double low_pass = 0.0;
-    double variance = 0.0;  // of (|m| − low_pass) / low_pass
-    bool started = false;
-    void update(double norm, double alpha);
+    explicit Strength(double time_constant_s) : mean(time_constant_s), variance(time_constant_s) {}
+    LowPass<double> mean;
+    LowPass<double> variance;
+    void update(double norm, double dt_s);
   };
   bool fitsBetter(const Strength& other, const Strength& in_use) const;
   MagCalibrationFitParams p_;
