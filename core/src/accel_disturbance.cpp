@@ -1,11 +1,9 @@
 #include "headingd/core/accel_disturbance.hpp"
 
-#include "headingd/core/low_pass.hpp"
-
 namespace headingd::core {
 
 double AccelDisturbanceLevel::update(const Vec3& accel_m_s2, double sample_period_s) {
-  const double alpha = lowPassAlpha(sample_period_s, time_constant_s_);
+  const double alpha = alpha_(sample_period_s);
   const double deviation = accel_m_s2.norm() - gravity_m_s2_;
   d_ = alpha * d_ + (1.0 - alpha) * deviation * deviation;
   return d_;

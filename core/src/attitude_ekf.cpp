@@ -59,24 +59,66 @@ void AttitudeEkf::predict(const Quat& increment, double dt_s, double gyro_noise_
   // Q = s² Ξ Ξᵀ = s² (|q|² I - q qᵀ): q and the three columns of Ξ(q) are orthogonal, each of
   // length |q| (together they form the left-multiplication matrix of q). P stays symmetric, so
   // only its upper triangle is computed and mirrored.
-  const double q_norm2 = q_.squaredNorm();
-  const Mat4 FP = F * P_;
-  Mat4 P;
-  for (int j = 0; j < 4; ++j) {
-    for (int i = 0; i <= j; ++i) {
-      const double q_term = (i == j ? q_norm2 : 0.0) - q_(i) * q_(j);
-      P(i, j) = P(j, i) = FP.row(i).dot(F.row(j)) + s2 * q_term;  // eq. 3.3
+  if (general_) {
+    const double q_norm2 = q_.squaredNorm();
+    const Mat4 FP = F * P_;
+    Mat4 P;
+    for (int j = 0; j < 4; ++j) {
+      for (int i = 0; i <= j; ++i) {
+        const double q_term = (i == j ? q_norm2 : 0.0) - q_(i) * q_(j);
+        P(i, j) = P(j, i) = FP.row(i).dot(F.row(j)) + s2 * q_term;  // eq. 3.3
+      }
     }
+    P_ = P;
+    // F is orthogonal and Q lies in the tangent space of q, so P stays orthogonal to q (up to
+    // rounding, which the next update's re-expression of P removes).
+  } else {
+    // F G(q) = G(F q): the earth-axis directions move with q (e_i ⊗ q ⊗ r), so F P Fᵀ keeps
+    // the same tilt and heading variances, and Q = s² G Gᵀ adds s² to each (taken at the
+    // new q rather than the old: they differ by |ω| dt/2 of Q, far below its own accuracy).
+    tilt_.diagonal().array() += s2;
+    heading_variance_ += s2;
   }
-  P_ = P;
   q_ = F * q_;
   normalise();
-  // F is orthogonal and Q lies in the tangent space of q, so P stays orthogonal to q (up to
-  // rounding, which the next update's re-expression of P removes).
 }
 
 void AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2) {
   const double f_down = -gravity_m_s2;  // f_n = (0, 0, -g)
+  if (general_) {
+    updateGravityGeneral(accel_m_s2, accel_noise_m_s2, f_down);
+  } else {
+    updateGravityTilt(accel_m_s2, accel_noise_m_s2, f_down);
+  }
+}
+
+void AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down) {
+  // Eqs. 3.5-3.7 with P = G diag(A, heading) Gᵀ (A: 2×2 tilt block, G = earth-axis
+  // directions of q). H G = (J, 0): gravity does not change when the body turns about down.
+  // Then H P Hᵀ = J A Jᵀ, K = G₂ A Jᵀ S⁻¹, and by the push-through identity
+  // Jᵀ (σ² I + J A Jᵀ)⁻¹ = (σ² I + Jᵀ J A)⁻¹ Jᵀ the 3×3 inverse of S becomes a 2×2 one:
+  //   B = A (σ² I + Jᵀ J A)⁻¹,  K = G₂ B Jᵀ,  A ← A - B Jᵀ J A.
+  // The heading variance is left as it is, as the 4×4 update leaves it.
+  const Mat34 H = gravityInBodyJacobian(q_, f_down);  // eq. 3.5
+  const Mat43 G = earthAxisDirections(q_);
+  const Eigen::Matrix<double, 3, 2> J = H * G.leftCols<2>();
+  const Eigen::Matrix2d W = J.transpose() * J;
+  Eigen::Matrix2d N = W * tilt_;
+  N.diagonal().array() += accel_noise_m_s2 * accel_noise_m_s2;
+  const double inverse_det = 1.0 / (N(0, 0) * N(1, 1) - N(0, 1) * N(1, 0));
+  Eigen::Matrix2d N_inverse;
+  N_inverse << N(1, 1), -N(0, 1), -N(1, 0), N(0, 0);
+  const Eigen::Matrix2d B = tilt_ * (inverse_det * N_inverse);
+  const Eigen::Vector2d turn = B * (J.transpose() * (accel_m_s2 - gravityInBody(q_, f_down)));  // eq. 3.7a
+  q_ += G.leftCols<2>() * turn;
+  const Eigen::Matrix2d A = tilt_ - B * (W * tilt_);  // eq. 3.7b
+  const double xy = 0.5 * (A(0, 1) + A(1, 0));      // symmetric, as keepHeadingOutOfTilt keeps it
+  tilt_ << A(0, 0), xy, xy, A(1, 1);
+  normalise();  // eq. 3.8
+  // P about the NED axes is re-expressed at the new q by keeping A and the heading variance.
+}
+
+void AttitudeEkf::updateGravityGeneral(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down) {
   const Mat34 H = gravityInBodyJacobian(q_, f_down);  // eq. 3.5
   // P is symmetric, so P Hᵀ = (H P)ᵀ: one product serves S, K and the update of P.
   const Mat34 HP = H * P_;
@@ -97,7 +139,6 @@ void AttitudeEkf::keepHeadingOutOfTilt(const Vec4& q_prior) {
   // with every update of q, so P is re-expressed about the NED axes at the updated q (the
   // same carry as in setAttitude) and the heading-tilt terms are dropped.
   const Eigen::Matrix<double, 4, 3> before = earthAxisDirections(q_prior);
-  const Eigen::Matrix<double, 4, 3> after = earthAxisDirections(q_);
   // Only the entries of P about the NED axes that survive are computed: the tilt block
   // (symmetrised) and the heading variance.
   const Eigen::Matrix<double, 4, 3> P_before = P_ * before;
@@ -105,14 +146,24 @@ void AttitudeEkf::keepHeadingOutOfTilt(const Vec4& q_prior) {
   const double tilt_xy = 0.5 * (before.col(0).dot(P_before.col(1)) + before.col(1).dot(P_before.col(0)));
   const double tilt_yy = before.col(1).dot(P_before.col(1));
   const double heading = before.col(2).dot(P_before.col(2));
-  // P = after · [[xx, xy, 0], [xy, yy, 0], [0, 0, heading]] · afterᵀ, written out (symmetric).
-  for (int j = 0; j < 4; ++j) {
-    for (int i = 0; i <= j; ++i) {
-      const double gx_i = after(i, 0), gy_i = after(i, 1), gx_j = after(j, 0), gy_j = after(j, 1);
-      P_(i, j) = P_(j, i) = tilt_xx * gx_i * gx_j + tilt_xy * (gx_i * gy_j + gy_i * gx_j) +
-                            tilt_yy * gy_i * gy_j + heading * after(i, 2) * after(j, 2);
-    }
-  }
+  // P = G(q) · [[xx, xy, 0], [xy, yy, 0], [0, 0, heading]] · G(q)ᵀ: from now on only the
+  // middle matrix is kept (the tilt form of the header).
+  tilt_ << tilt_xx, tilt_xy, tilt_xy, tilt_yy;
+  heading_variance_ = heading;
+  general_ = false;
+}
+
+Mat4 AttitudeEkf::covariance() const {
+  if (general_) return P_;
+  const Mat43 G = earthAxisDirections(q_);
+  Mat3 T = Mat3::Zero();
+  T.topLeftCorner<2, 2>() = tilt_;
+  T(2, 2) = heading_variance_;
+  return G * T * G.transpose();
+}
+
+bool AttitudeEkf::allFinite() const {
+  return q_.allFinite() && (general_ ? P_.allFinite() : tilt_.allFinite() && std::isfinite(heading_variance_));
 }
 
 void AttitudeEkf::setAttitude(const Quat& q_nb) {
@@ -122,8 +173,11 @@ void AttitudeEkf::setAttitude(const Quat& q_nb) {
   // q itself. Moving q without moving P would mix the two: the well-known tilt would look
   // like heading and the accelerometer would start to turn the heading. Carry P over so that
   // its covariance about the NED axes stays the same.
-  const Mat4 carry = earthAxisDirections(q_new) * earthAxisDirections(q_).transpose();
-  P_ = carry * P_ * carry.transpose();
+  // (In the tilt form that carry is built in: the variances are about the NED axes.)
+  if (general_) {
+    const Mat4 carry = earthAxisDirections(q_new) * earthAxisDirections(q_).transpose();
+    P_ = carry * P_ * carry.transpose();
+  }
   q_ = q_new;
 }
 

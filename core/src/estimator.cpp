@@ -89,8 +89,7 @@ void Estimator::initialise(const ImuSample& s, bool mag_usable) {
 
 void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   out_.dt_s = dt_s;
-  const Vec4 previous_state = ekf_.state();
-  const Mat4 previous_covariance = ekf_.covariance();
+  const AttitudeEkf previous_ekf = ekf_;
 
   const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, dt_s);
   const Quat increment = gyroIncrement(gyro, dt_s);  // shared by the EKF and the gyro-only integrators
@@ -118,10 +117,9 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
     mag_sample_dt_s_ = 0.0;
   }
 
-  if (!ekf_.state().allFinite() || !ekf_.covariance().allFinite()) {
+  if (!ekf_.allFinite()) {
     // Never expected (every input is finite by now); if it happens, keep the last good state.
-    ekf_.setAttitude(fromWxyz(previous_state));
-    ekf_.setCovariance(previous_covariance);
+    ekf_ = previous_ekf;
     ++state_recoveries_;
   }
   background_.update(increment, dt_s, ekf_.attitude());
@@ -182,10 +180,10 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.valid = true;
   out_.t_ns = t_ns;
   out_.q_nb = q;
-  out_.euler = eulerZyx(q);
+  out_.yaw_rad = yawZyx(q);
   out_.head_height = headHeight(q);
   out_.heading_redefined = heading_definition_.update(q);
-  out_.heading_rad = out_.heading_redefined ? redefinedHeadingOf(q) : out_.euler.yaw_rad;
+  out_.heading_rad = out_.heading_redefined ? redefinedHeadingOf(q) : out_.yaw_rad;
   out_.motion_level = motion_.level();
   out_.accel_disturbance = disturbance_.value();
   out_.gyro_bias_rad_s = bias_.bias();

@@ -30,7 +30,7 @@ const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_
   // A plain running mean until one time constant of rest has been seen (the first rest then
   // gives the mean of all its samples rather than a first-sample start), an exponential
   // low-pass (eq. 2.13/2.17) after that, so that the bias can follow temperature drift.
-  const double weight = std::max(dt_s / rest_seconds_, 1.0 - lowPassAlpha(dt_s, p_.bias_time_constant_s));
+  const double weight = std::max(dt_s / rest_seconds_, 1.0 - alpha_(dt_s));
   const Vec3 updated = bias_ + weight * (gyro_rad_s - bias_);
   if (updated.norm() <= p_.bias_max_rad_s) bias_ = updated;
   return bias_;

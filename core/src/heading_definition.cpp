@@ -4,7 +4,7 @@
 
 namespace headingd::core {
 
-double headingOf(const Quat& q_nb) { return eulerZyx(q_nb).yaw_rad; }
+double headingOf(const Quat& q_nb) { return yawZyx(q_nb); }
 
 double redefinedHeadingOf(const Quat& q_nb) {
   const double h = std::sqrt(0.5);

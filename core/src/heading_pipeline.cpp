@@ -147,7 +147,7 @@ void HeadingPipeline::updateDeclination() {
 
 void HeadingPipeline::updateOutput() {
   out_.attitude = estimator_.output();
-  out_.heading_mag_rad = out_.attitude.euler.yaw_rad;
+  out_.heading_mag_rad = out_.attitude.yaw_rad;
   out_.heading_true_rad = wrapAngle(out_.heading_mag_rad - out_.mount_yaw_rad + out_.declination_rad);
 }
 

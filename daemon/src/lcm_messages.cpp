@@ -51,9 +51,10 @@ void fillAttitude(headingd::attitude_t& m, const core::HeadingOutput& h, const c
   m.q_nb[1] = a.q_nb.x();
   m.q_nb[2] = a.q_nb.y();
   m.q_nb[3] = a.q_nb.z();
-  m.roll_rad = a.euler.roll_rad;
-  m.pitch_rad = a.euler.pitch_rad;
-  m.yaw_rad = a.euler.yaw_rad;
+  const core::EulerAngles euler = core::eulerZyx(a.q_nb);
+  m.roll_rad = euler.roll_rad;
+  m.pitch_rad = euler.pitch_rad;
+  m.yaw_rad = euler.yaw_rad;
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) m.q_covariance[r][c] = q_covariance(r, c);
   }

@@ -121,8 +121,9 @@ int main(int argc, char** argv) {
                      t);
         continue;
       }
+      const core::EulerAngles euler = core::eulerZyx(e.q_nb);
       std::fprintf(f, "%.9g,%.9f,%.9f,%.9f,%.9f,%.6f,%.6f,%.6f", t, e.q_nb.w(), e.q_nb.x(), e.q_nb.y(), e.q_nb.z(),
-                   e.euler.roll_rad * kDeg, e.euler.pitch_rad * kDeg, e.euler.yaw_rad * kDeg);
+                   euler.roll_rad * kDeg, euler.pitch_rad * kDeg, euler.yaw_rad * kDeg);
       if (with_gps) {
         std::fprintf(f, ",%.6f,%.6f,%.6f,%s,%.6f,%.6f,%d", h.heading_mag_rad * kDeg, h.declination_rad * kDeg,
                      h.declination_sigma_rad * kDeg, core::declinationSourceName(h.declination_sources),

@@ -1,6 +1,7 @@
 #pragma once
 // How disturbed the accelerometer is (Henriksson §3.1) and the R level chosen from it.
 #include "headingd/core/estimator_params.hpp"
+#include "headingd/core/low_pass.hpp"
 #include "headingd/core/quaternion.hpp"
 
 namespace headingd::core {
@@ -9,13 +10,13 @@ namespace headingd::core {
 class AccelDisturbanceLevel {
  public:
   AccelDisturbanceLevel(double gravity_m_s2, double time_constant_s)
-      : gravity_m_s2_(gravity_m_s2), time_constant_s_(time_constant_s) {}
+      : gravity_m_s2_(gravity_m_s2), alpha_(time_constant_s) {}
   double update(const Vec3& accel_m_s2, double sample_period_s);
   double value() const { return d_; }
 
  private:
   double gravity_m_s2_;
-  double time_constant_s_;
+  LowPassAlpha alpha_;
   double d_ = 0.0;  // starts undisturbed, as a person standing still
 };
 

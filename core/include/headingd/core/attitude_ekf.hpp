@@ -30,23 +30,37 @@ class AttitudeEkf {
   void setAttitude(const Quat& q_nb);
 
   // Turns the attitude about NED down by angle_rad: the magnetometer observer's correction
-  // (Henriksson eq. 4.2), a few 1e-4 rad per sample. Below 0.01 rad P is not carried: P only
-  // describes tilt (keepHeadingOutOfTilt), a turn about down leaves the tilt error's size
-  // unchanged and only turns its axes by the angle, and the next update re-expresses P at
-  // the new q anyway; this saves the carry's matrix products on every sample.
+  // (Henriksson eq. 4.2), a few 1e-4 rad per sample. The variances about the NED axes stay as
+  // they are (in the tilt form that is all there is to carry; while P is still general, below
+  // 0.01 rad it is not carried: the next update re-expresses P at the new q anyway).
   void turnHeading(double angle_rad);
 
   Quat attitude() const { return fromWxyz(q_); }
   const Vec4& state() const { return q_; }
-  const Mat4& covariance() const { return P_; }
-  void setCovariance(const Mat4& P) { P_ = P; }
+  // P of eqs. 3.3 and 3.7b in the 4-D space of q (built from the tilt form once there is one).
+  Mat4 covariance() const;
+  void setCovariance(const Mat4& P) {
+    P_ = P;
+    general_ = true;
+  }
+  bool allFinite() const;
 
  private:
   void normalise();
+  void updateGravityGeneral(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down);
+  void updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down);
   void keepHeadingOutOfTilt(const Vec4& q_prior);
 
   Vec4 q_;
+  // Until the first gravity update after setCovariance, P is whatever was set (it may have a
+  // part along q, as the start-up P = c·I has) and the filter works on the whole 4×4 P_.
+  // After it, keepHeadingOutOfTilt has made P = G(q) diag(tilt, heading) G(q)ᵀ with G the
+  // earth-axis directions of q, and every step keeps that form (see the .cpp): only the
+  // 2×2 tilt block and the heading variance are kept, and the 4×4 algebra becomes 2×2.
+  bool general_ = true;
   Mat4 P_;
+  Eigen::Matrix2d tilt_ = Eigen::Matrix2d::Zero();  // about NED north and east
+  double heading_variance_ = 0.0;                     // about NED down
 };
 
 }  // namespace headingd::core

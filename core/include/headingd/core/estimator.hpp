@@ -25,7 +25,9 @@ struct EstimatorOutput {
   std::int64_t t_ns = 0;
   double dt_s = 0.0;  // period this sample was integrated over (0: not integrated)
   Quat q_nb = Quat::Identity();
-  EulerAngles euler{0.0, 0.0, 0.0};  // yaw = heading of the body x-axis from magnetic north
+  // zyx yaw: heading of the body x-axis from magnetic north. Roll and pitch are not computed
+  // per sample (two more libm calls that most samples' readers never look at): eulerZyx(q_nb).
+  double yaw_rad = 0.0;
   // Heading by the definition in use: ψ (x-axis) or, lying down, ψ_rd (-z axis, §3.3).
   double heading_rad = 0.0;
   bool heading_redefined = false;

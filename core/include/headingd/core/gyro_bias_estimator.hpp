@@ -49,7 +49,7 @@ class RestDetector {
 
 class GyroBiasEstimator {
  public:
-  explicit GyroBiasEstimator(const EstimatorParams& p) : p_(p), rest_(p) {}
+  explicit GyroBiasEstimator(const EstimatorParams& p) : p_(p), rest_(p), alpha_(p.bias_time_constant_s) {}
 
   // Feeds one raw sample; returns the current bias estimate.
   const Vec3& update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s);
@@ -61,6 +61,7 @@ class GyroBiasEstimator {
  private:
   const EstimatorParams& p_;
   RestDetector rest_;
+  LowPassAlpha alpha_;  // of the bias low-pass
   Vec3 bias_ = Vec3::Zero();
   double rest_seconds_ = 0.0;
 };

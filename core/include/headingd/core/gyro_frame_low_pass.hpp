@@ -15,6 +15,11 @@
 // For the magnetometer, with a short time constant, it takes the white noise out of the field
 // (strength and dip tests of §4.2 compare samples with thresholds, and the heading observer
 // sees the field) without the lag a body-frame filter would have while the body turns.
+//
+// Computed the other way round, with the same result: the filter's state is kept in the
+// current body axes and turned with each gyro increment (y_b ← r* y_b r), which is the
+// low-pass in the gyro frame seen from the body. One rotation per sample instead of
+// rotating every sample in and the result back out.
 #include "headingd/core/low_pass.hpp"
 #include "headingd/core/quaternion.hpp"
 
@@ -44,8 +49,7 @@ class GyroFrameLowPass {
 
  private:
   double time_constant_s_;
-  Quat q_inertial_body_ = Quat::Identity();
-  LowPass<Vec3> filtered_;
+  LowPass<Vec3> filtered_;  // in the current body axes
 };
 
 }  // namespace headingd::core

@@ -15,18 +15,38 @@ inline double lowPassAlpha(double sample_period_s, double time_constant_s) {
   return std::exp(-x);
 }
 
+// α of lowPassAlpha for one time constant, kept for the last sample period: the period
+// comes from timestamps and is the same from one sample to the next on most sensors, and
+// the estimator runs a dozen of these filters per sample.
+class LowPassAlpha {
+ public:
+  explicit LowPassAlpha(double time_constant_s) : time_constant_s_(time_constant_s) {}
+  double operator()(double sample_period_s) {
+    if (sample_period_s != sample_period_s_) {
+      sample_period_s_ = sample_period_s;
+      alpha_ = lowPassAlpha(sample_period_s, time_constant_s_);
+    }
+    return alpha_;
+  }
+
+ private:
+  double time_constant_s_;
+  double sample_period_s_ = -1.0;  // no period yet
+  double alpha_ = 0.0;
+};
+
 // Henriksson eq. 2.13: y[k] = α y[k-1] + (1-α) x[k]. The first input initialises y.
 template <typename T>
 class LowPass {
  public:
-  explicit LowPass(double time_constant_s) : time_constant_s_(time_constant_s) {}
+  explicit LowPass(double time_constant_s) : alpha_(time_constant_s) {}
 
   const T& update(const T& x, double sample_period_s) {
     if (!initialised_) {
       y_ = x;
       initialised_ = true;
     } else {
-      const double alpha = lowPassAlpha(sample_period_s, time_constant_s_);
+      const double alpha = alpha_(sample_period_s);
       y_ = alpha * y_ + (1.0 - alpha) * x;
     }
     return y_;
@@ -47,7 +67,7 @@ class LowPass {
     }
   }
 
-  double time_constant_s_;
+  LowPassAlpha alpha_;
   T y_ = zero();
   bool initialised_ = false;
 };

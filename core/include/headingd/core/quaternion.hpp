@@ -53,6 +53,8 @@ struct EulerAngles {
   double yaw_rad;
 };
 EulerAngles eulerZyx(const Quat& q_nb);
+// The yaw of eulerZyx alone (one atan2 instead of two and an asin).
+double yawZyx(const Quat& q_nb);
 
 // Rotation by angle_rad about NED down (a heading change seen from above, clockwise positive).
 Quat headingRotation(double angle_rad);
