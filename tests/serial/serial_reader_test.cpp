@@ -272,8 +272,9 @@ TEST(SerialGpsReader, GarbageBetweenSentencesIsCountedAndChangesNoFix) {
   EXPECT_EQ(c.parser.sentences.decoded, want_counters.sentences.decoded);
 }
 
-// The receiver unplugged and plugged in again: the pty is closed, a new one is created and
-// the udev-style symlink the reader was configured with is pointed at it.
+// The receiver unplugged and plugged in again: the udev-style symlink the reader was
+// configured with goes and the pty is closed; a new pty is created and the symlink points at
+// it again.
 TEST(SerialGpsReader, ReopensWhenTheDeviceComesBackBehindItsSymlink) {
   const auto wire = readWireBytes(kLogs / "sirfstarv-nmea.log");
   nmea::Counters want_counters;
@@ -309,7 +310,11 @@ TEST(SerialGpsReader, ReopensWhenTheDeviceComesBackBehindItsSymlink) {
   first->writePaced(std::span(wire).first(cut), lineBytesPerSecond(115200));
   ASSERT_TRUE(h.waitBytes(cut));
 
-  first->close();  // unplugged
+  // Unplugged: udev removes the by-id link, the device goes. Without the first step the link
+  // would dangle at /dev/pts/N, a number the kernel hands to the next pty anyone opens (another
+  // test running beside this one), and the reader would rightly open that.
+  std::filesystem::remove(link);
+  first->close();
   ASSERT_TRUE(h.waitState(SerialGpsState::kWaitingForDevice));
   EXPECT_EQ(h.received.fixCount(), want.size() / 2) << "the epoch in progress goes out when the device goes";
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a few retries against the dead path
