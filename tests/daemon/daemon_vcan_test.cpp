@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "daemon_test_support.hpp"
+#include "headingd/replay/numeric_csv.hpp"
 #include "lcm_collector.hpp"
 #include "vcan_test_support.hpp"
 
@@ -27,21 +28,6 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 constexpr int kRows = 2857;  // the first 10 s of BROAD trial 05
 
 using test::counter;
-
-// A numeric CSV with a header line, as rows of numbers.
-std::vector<std::vector<double>> readCsvRows(const std::string& path) {
-  std::vector<std::vector<double>> rows;
-  std::istringstream in(test::readFile(path));
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::vector<double>& f = rows.emplace_back();
-    std::stringstream fields(line);
-    std::string cell;
-    while (std::getline(fields, cell, ',')) f.push_back(std::strtod(cell.c_str(), nullptr));
-  }
-  return rows;
-}
 
 TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
   // Needs a vcan interface: CTest runs this binary inside tools/scripts/vm-run.sh (this
@@ -85,17 +71,20 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
 
   // The samples as decoded: each IMU message is the CSV's row i within half the DBC's resolution.
   ASSERT_EQ(imu.size(), static_cast<std::size_t>(kRows)) << "IMU messages lost between daemon and subscriber";
-  const std::vector<std::vector<double>> rows = readCsvRows(dir.file("imu.csv"));
-  ASSERT_EQ(rows.size(), static_cast<std::size_t>(kRows));
+  const std::vector<std::string> axes = {"gyr_x", "gyr_y", "gyr_z", "acc_x", "acc_y", "acc_z", "mag_x", "mag_y", "mag_z"};
+  std::vector<std::string> columns = axes;
+  columns.push_back("t");
+  const replay::NumericCsv rows = replay::readNumericCsv(dir.file("imu.csv"), columns);
+  ASSERT_EQ(rows.rows, static_cast<std::size_t>(kRows));
   constexpr double kHalfStep[3] = {0.0001 / 2, 0.0002 / 2, 0.002 / 2};  // gyro, accel, mag (headingd_imu.dbc)
   double worst_step_fraction = 0.0;
   for (int i = 0; i < kRows; ++i) {
     const auto& m = imu[i].message;
     ASSERT_TRUE(m.has_mag) << "sample " << i << " has no magnetometer reading";
-    for (int k = 0; k < 3; ++k) {
-      worst_step_fraction = std::max({worst_step_fraction, std::abs(m.gyro_rad_s[k] - rows[i][1 + k]) / kHalfStep[0],
-                                      std::abs(m.accel_m_s2[k] - rows[i][4 + k]) / kHalfStep[1],
-                                      std::abs(m.mag_uT[k] - rows[i][7 + k]) / kHalfStep[2]});
+    const double* decoded[3] = {m.gyro_rad_s, m.accel_m_s2, m.mag_uT};
+    for (int a = 0; a < 9; ++a) {
+      const double error = std::abs(decoded[a / 3][a % 3] - rows.column(axes[a])[i]);
+      worst_step_fraction = std::max(worst_step_fraction, error / kHalfStep[a / 3]);
     }
   }
   EXPECT_LE(worst_step_fraction, 1.0 + 1e-6) << "decoded values differ from the CSV by more than half a DBC step";
@@ -122,8 +111,7 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
                          dir.file("replay.csv") + " 2>/dev/null")
                             .c_str()),
             0);
-  std::vector<double> replay_yaw_deg;
-  for (const auto& f : readCsvRows(dir.file("replay.csv"))) replay_yaw_deg.push_back(f.size() > 7 ? f[7] : NAN);
+  const std::vector<double> replay_yaw_deg = replay::readNumericCsv(dir.file("replay.csv"), {"yaw_deg"}).column("yaw_deg");
   ASSERT_EQ(replay_yaw_deg.size(), static_cast<std::size_t>(kRows));
   std::map<std::int64_t, std::size_t> index_of_sample;
   for (std::size_t i = 0; i < imu.size(); ++i) index_of_sample[imu[i].message.sample_utime] = i;
@@ -139,7 +127,7 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
     max_yaw_diff = std::max(max_yaw_diff, std::abs(std::remainder(a.message.yaw_rad * kDeg - want, 360.0)));
     ++compared;
   }
-  const double csv_seconds = rows.back()[0] - rows.front()[0];
+  const double csv_seconds = rows.column("t").back() - rows.column("t").front();
   const double received_seconds = static_cast<double>(imu.back().message.sample_utime - imu.front().message.sample_utime) * 1e-6;
   std::fprintf(stderr,
                "vcan: %zu IMU messages (worst decoded value %.2f of half a DBC step; %.3f s of kernel time for the "
