@@ -136,7 +136,9 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
                imu.size(), worst_step_fraction, received_seconds, csv_seconds, fresh, compared, max_yaw_diff);
   EXPECT_GT(fresh, 800u);  // ~10 s at 100 Hz
   EXPECT_GT(compared, 800u);
-  EXPECT_LT(max_yaw_diff, 1e-3);  // the timestamps round to µs on the way through LCM
+  // The timestamps round to µs on the way through LCM: 0.9-2.4e-4° measured over 8 runs. One
+  // sample lost or added would turn the attitude by ω·dt, about 0.1° at this trial's rates.
+  EXPECT_LT(max_yaw_diff, 5e-3);
   EXPECT_NEAR(received_seconds, csv_seconds, 0.5) << "canplayer plays the log at real time";
 }
 
