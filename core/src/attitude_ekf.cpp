@@ -83,16 +83,16 @@ void AttitudeEkf::predict(const Quat& increment, double dt_s, double gyro_noise_
   normalise();
 }
 
-void AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2) {
+Eigen::Vector2d AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2) {
   const double f_down = -gravity_m_s2;  // f_n = (0, 0, -g)
   if (general_) {
     updateGravityGeneral(accel_m_s2, accel_noise_m_s2, f_down);
-  } else {
-    updateGravityTilt(accel_m_s2, accel_noise_m_s2, f_down);
+    return Eigen::Vector2d::Zero();
   }
+  return updateGravityTilt(accel_m_s2, accel_noise_m_s2, f_down);
 }
 
-void AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down) {
+Eigen::Vector2d AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down) {
   // Eqs. 3.5-3.7 with P = G diag(A, heading) Gᵀ (A: 2×2 tilt block, G = earth-axis
   // directions of q). H G = (J, 0): gravity does not change when the body turns about down.
   // Then H P Hᵀ = J A Jᵀ, K = G₂ A Jᵀ S⁻¹, and by the push-through identity
@@ -116,6 +116,8 @@ void AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m
   tilt_ << A(0, 0), xy, xy, A(1, 1);
   normalise();  // eq. 3.8
   // P about the NED axes is re-expressed at the new q by keeping A and the heading variance.
+  // q + G₂ t = (1 + t_x e_x + t_y e_y) ⊗ q: a turn by 2 t about the NED axes.
+  return 2.0 * turn;
 }
 
 void AttitudeEkf::updateGravityGeneral(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down) {

@@ -12,6 +12,18 @@ namespace {
 // of Algorithm 2's 1000·I, which would let the first accelerometer samples throw it around.
 const Mat4 kStartupCovariance = 0.05 * 0.05 * Mat4::Identity();
 
+// The gravity update's turns measure a bias only after this many of the tilt's time constants
+// since it started afresh: before, they correct the start.
+constexpr double kBiasSettleTimeConstants = 5.0;
+
+// How long the tilt takes to follow the accelerometer while standing: the prefilter's time
+// constant plus the EKF's. The EKF's, in steady state, is 2 σ_a / (g σ_ω) for a gravity
+// noise σ_a and a rate noise σ_ω per sample (the tilt's random walk of (σ_ω dt / 2)² per
+// sample against σ_a / g per sample): independent of the sample rate.
+double tiltTimeConstantS(const EstimatorParams& p) {
+  return p.accel_prefilter_time_constant_s + 2.0 * p.accel_noise_standing_m_s2 / (p.gravity_m_s2 * p.gyro_noise_rad_s);
+}
+
 }  // namespace
 
 Quat attitudeFromGravityAndField(const Vec3& accel_m_s2, const Vec3* mag_uT) {
@@ -34,7 +46,7 @@ Estimator::Estimator(const EstimatorParams& params)
       accel_prefilter_(p_.accel_prefilter_time_constant_s),
       mag_prefilter_(p_.mag_prefilter_time_constant_s),
       motion_(p_),
-      background_(p_.backup_reset_period_s),
+      heading_corrections_(p_.backup_reset_period_s),
       heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave),
       mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
                         p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
@@ -61,14 +73,15 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       // The gyro cannot be integrated across the hole, so the attitude may have turned by
       // any amount meanwhile: the tilt covariance goes back to its start-up value and the
       // next field sample sets the heading outright (then the observer's running mean).
-      // The background attitudes restart so that no back-tracking reaches across the hole.
+      // The observer's correction sums restart so that no restore reaches across the hole.
       accel_prefilter_.restart();
       mag_prefilter_.restart();
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
-      background_.restart(ekf_.attitude());
+      heading_corrections_.restart();
       ekf_.setCovariance(kStartupCovariance);
       heading_aligned_ = false;
       mag_seconds_ = 0.0;
+      tilt_seconds_ = 0.0;
       publish(s.t_ns);
       break;
     default:
@@ -81,8 +94,9 @@ void Estimator::initialise(const ImuSample& s, bool mag_usable) {
   if (s.accel_m_s2.norm() < 0.1 * p_.gravity_m_s2) return;  // no usable gravity direction yet
   ekf_.setAttitude(attitudeFromGravityAndField(s.accel_m_s2, mag_usable ? &s.mag_uT : nullptr));
   ekf_.setCovariance(kStartupCovariance);
-  background_.restart(ekf_.attitude());
+  heading_corrections_.restart();
   heading_aligned_ = mag_usable;
+  tilt_seconds_ = 0.0;
   initialised_ = true;
   publish(s.t_ns);
 }
@@ -91,21 +105,37 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   out_.dt_s = dt_s;
   const AttitudeEkf previous_ekf = ekf_;
 
-  const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, dt_s);
-  const Quat increment = gyroIncrement(gyro, dt_s);  // shared by the EKF and the gyro-only integrators
+  // The rest test looks at the field too (a slow turn about the vertical), when it is clean:
+  // the disturbance tests of the previous sample decide.
+  const Vec3* field_for_rest = mag_usable && !out_.mag_disturbed ? &s.mag_uT : nullptr;
+  const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, field_for_rest, dt_s);
+  const Quat increment = gyroIncrement(gyro, dt_s);  // shared by the EKF and the gyro-frame low-passes
   const double scale_noise = p_.gyro_scale_noise * gyro.norm();
   ekf_.predict(increment, dt_s, std::sqrt(p_.gyro_noise_rad_s * p_.gyro_noise_rad_s + scale_noise * scale_noise));
-  const Vec3 gravity_measurement = accel_prefilter_.update(increment, s.accel_m_s2, dt_s);
+  // The accelerometer and magnetometer samples are means over the interval, so they see the
+  // body as it was part of the way through it, while the gyro's increment has brought the
+  // attitude to its end: turn them by the rest of the interval's rotation.
+  const Quat to_interval_end = gyroIncrement(gyro, p_.vector_sample_lag_fraction * dt_s).conjugate();
+  const Vec3 accel_now = to_interval_end * s.accel_m_s2;
+  const Vec3 mag_now = to_interval_end * s.mag_uT;
+  const Vec3 gravity_measurement = accel_prefilter_.update(increment, accel_now, dt_s);
 
-  const MotionLevel before = motion_.level();
+  // Henriksson §3.1 also goes back to a gyro-only background attitude whenever the level
+  // steps up. headingd does not: that attitude has run on the gyro alone for 5-10 s, and
+  // its errors over that time (bias, scale) cost more than the accelerations it undoes
+  // (issue 17: removing it took BROAD from 2.03 to 1.90 deg, at 50 Hz from 3.60 to 2.30 deg,
+  // and halved the tilt peaks of simulated hand-held motion).
   const MotionLevel level = motion_.update(disturbance_.update(s.accel_m_s2, dt_s));
-  if (level > before) {
-    // §3.1: the accelerometer has been disturbed for a while already; the gyro-only attitude
-    // from before that time replaces the estimate.
-    ekf_.setAttitude(background_.oldest());
-    ++backtracks_;
+  const Eigen::Vector2d tilt_turn =
+      ekf_.updateGravity(gravity_measurement, accelNoiseFor(level, p_), p_.gravity_m_s2);
+  tilt_seconds_ += dt_s;
+  // The turn measures the bias once the tilt has settled from its start (the first turns
+  // correct the start, not a drift).
+  if (!bias_.atRest() && tilt_seconds_ >= kBiasSettleTimeConstants * tiltTimeConstantS(p_)) {
+    bias_.updateFromTiltCorrection(tilt_turn, ekf_.attitude(), dt_s);
+  } else {
+    bias_.followAttitude(ekf_.attitude(), dt_s);
   }
-  ekf_.updateGravity(gravity_measurement, accelNoiseFor(level, p_), p_.gravity_m_s2);
 
   out_.mag_used = false;
   out_.mag_disturbed = false;
@@ -113,7 +143,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   mag_prefilter_.advance(increment);
   mag_sample_dt_s_ += dt_s;
   if (mag_usable) {
-    correctHeading(mag_prefilter_.add(s.mag_uT, mag_sample_dt_s_), dt_s);
+    correctHeading(mag_prefilter_.add(mag_now, mag_sample_dt_s_), dt_s);
     mag_sample_dt_s_ = 0.0;
   }
 
@@ -122,19 +152,18 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
     ekf_ = previous_ekf;
     ++state_recoveries_;
   }
-  background_.update(increment, dt_s, ekf_.attitude());
+  heading_corrections_.advance(dt_s);
   publish(s.t_ns);
 }
 
-void Estimator::restoreBackgroundHeading() {
+void Estimator::restoreGyroHeading() {
   // Eq. 4.4: the detection lags the start of a disturbance (the field has to move beyond
   // the thresholds first), and the observer has been pulling the heading towards the bad
-  // field meanwhile. The older gyro-only background attitude was last reset before that;
-  // take its heading (only the rotation about the vertical: the tilt stays the EKF's).
-  Quat difference = background_.oldest() * ekf_.attitude().conjugate();  // NED axes
-  if (difference.w() < 0.0) difference.coeffs() = -difference.coeffs();
-  const double heading_offset = 2.0 * std::atan2(difference.z(), difference.w());
-  ekf_.setAttitude(applyHeadingCorrection(ekf_.attitude(), heading_offset, 1.0));
+  // field meanwhile. Undo what it did since the older sum restarted, before the field went
+  // wrong (heading_corrections.hpp): the heading the gyro alone would have kept.
+  const double undo = -heading_corrections_.oldestSumRad();
+  ekf_.turnHeading(undo);
+  heading_corrections_.add(undo);
   ++mag_heading_restores_;
 }
 
@@ -155,8 +184,8 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
   if (out_.mag_disturbed) {
     ++mag_disturbed_;
     out_.mag_innovation_rad = m.innovation_rad;
-    if (onset && heading_aligned_ && background_.oldestAge() <= p_.mag_restore_max_age_s) {
-      restoreBackgroundHeading();
+    if (onset && heading_aligned_ && heading_corrections_.oldestAgeS() <= p_.mag_restore_max_age_s) {
+      restoreGyroHeading();
     }
     return;  // K = 0: the heading runs on the gyro (eq. 4.3)
   }
@@ -170,6 +199,7 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
   }
   heading_aligned_ = true;
   ekf_.turnHeading(gain * m.innovation_rad);
+  heading_corrections_.add(gain * m.innovation_rad);
   out_.mag_used = true;
   out_.mag_gain = gain;
   out_.mag_innovation_rad = m.innovation_rad;
@@ -193,7 +223,7 @@ void Estimator::publish(std::int64_t t_ns) {
 EstimatorCounters Estimator::counters() const {
   EstimatorCounters c;
   c.samples = gate_.counters();
-  c.backtracks = backtracks_;
+  c.bias_still_blocks = bias_.stillBlocks();
   c.mag_no_heading = mag_no_heading_;
   c.mag_disturbed = mag_disturbed_;
   c.mag_heading_restores = mag_heading_restores_;

@@ -1,39 +1,80 @@
 #include "headingd/core/gyro_bias_estimator.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
 namespace headingd::core {
 
-bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* current_bias, double dt_s) {
-  const Vec3& gyro_mean = gyro_mean_.update(gyro_rad_s, dt_s);
-  const Vec3& accel_mean = accel_mean_.update(accel_m_s2, dt_s);
-  const double gyro_rms = std::sqrt(gyro_deviation2_.update((gyro_rad_s - gyro_mean).squaredNorm(), dt_s));
-  const double accel_rms = std::sqrt(accel_deviation2_.update((accel_m_s2 - accel_mean).squaredNorm(), dt_s));
-  gyro_floor_.update(gyro_rms, dt_s);
-  const double gyro_bound =
-      gyro_floor_.threshold(2.5, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s);
-  const bool steady = gyro_rms < gyro_bound && accel_rms < p_.rest_accel_threshold_m_s2 &&
-                      // Before the first estimate any rate up to the largest plausible bias
-                      // may be the bias.
-                      (current_bias ? (gyro_mean - *current_bias).norm() < gyro_bound
-                                    : gyro_mean.norm() < p_.bias_max_rad_s);
-  rest_time_s_ = steady ? rest_time_s_ + dt_s : 0.0;
-  return atRest();
+namespace {
+
+// Innovations are clipped to the largest plausible bias: one wild sample (a knock, the
+// first moments of a motion) moves the estimate at most that far.
+template <typename V>
+V clipped(const V& e, double limit) {
+  return e.cwiseMax(-limit).cwiseMin(limit);
 }
 
-const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s) {
-  if (!rest_.update(gyro_rad_s, accel_m_s2, rest_seconds_ > 0.0 ? &bias_ : nullptr, dt_s)) return bias_;
-  // A steady rate above the clamp is a turn, not a bias: keep the last good estimate.
-  if (gyro_rad_s.norm() > 2.0 * p_.bias_max_rad_s) return bias_;
-  rest_seconds_ += dt_s;
-  // A plain running mean until one time constant of rest has been seen (the first rest then
-  // gives the mean of all its samples rather than a first-sample start), an exponential
-  // low-pass (eq. 2.13/2.17) after that, so that the bias can follow temperature drift.
-  const double weight = std::max(dt_s / rest_seconds_, 1.0 - alpha_(dt_s));
-  const Vec3 updated = bias_ + weight * (gyro_rad_s - bias_);
-  if (updated.norm() <= p_.bias_max_rad_s) bias_ = updated;
+}  // namespace
+
+GyroBiasEstimator::GyroBiasEstimator(const EstimatorParams& p)
+    : p_(p),
+      rest_(p),
+      initial_variance_(0.25 * p.bias_max_rad_s * p.bias_max_rad_s),
+      horizontal_rows_(p.accel_prefilter_time_constant_s) {
+  P_ = initial_variance_ * Mat3::Identity();
+}
+
+const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT,
+                                      double dt_s) {
+  // The bias wanders: P grows by walk² dt, up to what nothing at all is known.
+  const double growth = p_.bias_walk_rad_s_per_sqrt_s * p_.bias_walk_rad_s_per_sqrt_s * dt_s;
+  for (int i = 0; i < 3; ++i) {
+    if (P_(i, i) < initial_variance_) P_(i, i) += growth;
+  }
+  if (!rest_.update(gyro_rad_s, accel_m_s2, mag_uT, dt_s)) return bias_;
+  // A still block measures the bias: y = its mean rate less its measured turn, H = I, and W
+  // its own covariance, but no less than N / T for a block of length T (N = τ² walk²: the
+  // estimate follows a changing bias at rest with time constant τ at most).
+  const RestBlock& block = rest_.block();
+  rest_seconds_ += block.duration_s;
+  ++still_blocks_;
+  const double tau_walk = p_.bias_time_constant_s * p_.bias_walk_rad_s_per_sqrt_s;
+  Mat3 W = block.covariance;
+  W.diagonal() = W.diagonal().cwiseMax(tau_walk * tau_walk / block.duration_s);
+  const Mat3 S = P_ + W;
+  const Mat3 K = P_ * S.inverse();
+  bias_ += K * clipped(Vec3(block.bias_rad_s - bias_), p_.bias_max_rad_s);
+  P_ -= K * P_;
+  P_ = 0.5 * (P_ + P_.transpose());
+  clampBias();
   return bias_;
+}
+
+void GyroBiasEstimator::followAttitude(const Quat& q_nb, double dt_s) {
+  horizontal_rows_.update(q_nb.toRotationMatrix().topRows<2>(), dt_s);
+}
+
+void GyroBiasEstimator::updateFromTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s) {
+  followAttitude(q_nb, dt_s);
+  if (p_.bias_motion_time_constant_s <= 0.0 || dt_s <= 0.0) return;
+  const Eigen::Matrix<double, 2, 3>& H = horizontal_rows_.value();
+  const double tau_walk = p_.bias_motion_time_constant_s * p_.bias_walk_rad_s_per_sqrt_s;
+  const Eigen::Matrix<double, 3, 2> PHt = P_ * H.transpose();
+  Eigen::Matrix2d S = H * PHt;
+  S.diagonal().array() += tau_walk * tau_walk / dt_s;
+  const Eigen::Matrix<double, 3, 2> K = PHt * S.inverse();
+  const Eigen::Vector2d innovation = -turn_rad / dt_s;  // = H (b - b̂)
+  bias_ += K * clipped(innovation, p_.bias_max_rad_s);
+  P_ -= K * PHt.transpose();
+  P_ = 0.5 * (P_ + P_.transpose());
+  clampBias();
+}
+
+void GyroBiasEstimator::clampBias() {
+  // A larger estimate means rest or motion was misjudged: keep it at the plausible edge.
+  const double norm = bias_.norm();
+  if (norm > p_.bias_max_rad_s) bias_ *= p_.bias_max_rad_s / norm;
 }
 
 }  // namespace headingd::core

@@ -40,6 +40,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"max_gyro_rad_s", &P::max_gyro_rad_s, 1.0, 1e4, "rad/s"},
       {"max_accel_m_s2", &P::max_accel_m_s2, 10.0, 1e5, "m/s^2"},
       {"max_mag_uT", &P::max_mag_uT, 10.0, 1e6, "uT"},
+      {"vector_sample_lag_fraction", &P::vector_sample_lag_fraction, 0.0, 2.0, "1"},
       {"gyro_noise_rad_s", &P::gyro_noise_rad_s, 1e-7, 1.0, "rad/s"},
       {"gyro_scale_noise", &P::gyro_scale_noise, 0.0, 1.0, "1"},
       {"accel_prefilter_time_constant_s", &P::accel_prefilter_time_constant_s, 0.0, 100.0, "s"},
@@ -81,7 +82,10 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"rest_accel_threshold_m_s2", &P::rest_accel_threshold_m_s2, 0.0, 10.0, "m/s^2"},
       {"rest_min_duration_s", &P::rest_min_duration_s, 0.0, 60.0, "s"},
       {"rest_filter_time_constant_s", &P::rest_filter_time_constant_s, 1e-3, 60.0, "s"},
+      {"rest_max_turn_rate_rad_s", &P::rest_max_turn_rate_rad_s, 0.0, 1.0, "rad/s"},
+      {"bias_walk_rad_s_per_sqrt_s", &P::bias_walk_rad_s_per_sqrt_s, 1e-9, 1.0, "rad/s/sqrt(s)"},
       {"bias_time_constant_s", &P::bias_time_constant_s, 1e-3, 3600.0, "s"},
+      {"bias_motion_time_constant_s", &P::bias_motion_time_constant_s, 0.0, 1e5, "s"},
       {"bias_max_rad_s", &P::bias_max_rad_s, 0.0, 1.0, "rad/s"},
   };
   return specs;

@@ -363,7 +363,7 @@ void EstimatorLoop::publishStatus(std::int64_t now_ns, std::int64_t utime_us) {
   setCounter(m.counters, i++, "out_of_range", c.samples.out_of_range);
   setCounter(m.counters, i++, "out_of_range_mag", c.samples.out_of_range_mag);
   setCounter(m.counters, i++, "imu_rejected", imu_rejected_);
-  setCounter(m.counters, i++, "backtracks", c.backtracks);
+  setCounter(m.counters, i++, "bias_still_blocks", c.bias_still_blocks);
   setCounter(m.counters, i++, "mag_no_heading", c.mag_no_heading);
   setCounter(m.counters, i++, "mag_disturbed", c.mag_disturbed);
   setCounter(m.counters, i++, "mag_heading_restores", c.mag_heading_restores);

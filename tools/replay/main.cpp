@@ -33,13 +33,13 @@ void printCounters(const core::EstimatorCounters& c, std::size_t rows, double se
   std::fprintf(stderr,
                "{\"rows\":%zu,\"accepted\":%llu,\"gaps\":%llu,\"clock_jumps\":%llu,\"duplicate_time\":%llu,"
                "\"backwards_time\":%llu,\"non_finite\":%llu,\"non_finite_mag\":%llu,\"out_of_range\":%llu,"
-               "\"out_of_range_mag\":%llu,\"backtracks\":%llu,\"mag_no_heading\":%llu,\"mag_disturbed\":%llu,"
+               "\"out_of_range_mag\":%llu,\"bias_still_blocks\":%llu,\"mag_no_heading\":%llu,\"mag_disturbed\":%llu,"
                "\"mag_heading_restores\":%llu,\"state_recoveries\":%llu,\"estimator_ns_per_sample\":%.1f}\n",
                rows, static_cast<unsigned long long>(s.accepted), static_cast<unsigned long long>(s.gaps),
                static_cast<unsigned long long>(s.clock_jumps), static_cast<unsigned long long>(s.duplicate_time),
                static_cast<unsigned long long>(s.backwards_time), static_cast<unsigned long long>(s.non_finite),
                static_cast<unsigned long long>(s.non_finite_mag), static_cast<unsigned long long>(s.out_of_range),
-               static_cast<unsigned long long>(s.out_of_range_mag), static_cast<unsigned long long>(c.backtracks),
+               static_cast<unsigned long long>(s.out_of_range_mag), static_cast<unsigned long long>(c.bias_still_blocks),
                static_cast<unsigned long long>(c.mag_no_heading), static_cast<unsigned long long>(c.mag_disturbed),
                static_cast<unsigned long long>(c.mag_heading_restores),
                static_cast<unsigned long long>(c.state_recoveries), rows ? seconds * 1e9 / rows : 0.0);

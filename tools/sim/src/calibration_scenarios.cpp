@@ -6,21 +6,6 @@ namespace headingd::sim {
 
 namespace {
 
-// One standing phase of the whole duration: outdoors, undisturbed, clean GPS.
-Scenario scriptedScenario(std::string name, std::string description, ScriptedOrientation script) {
-  Scenario s;
-  s.name = std::move(name);
-  s.description = std::move(description);
-  Phase p;
-  p.activity = Activity::kStanding;
-  p.duration_s = script.keyframes.back().t_s;
-  s.phases = {p};
-  s.initial_heading_deg = script.keyframes.front().yaw_deg;
-  s.gps = {0.0, 0.0, 10};
-  s.scripted = std::move(script);
-  return s;
-}
-
 // Appends a move to (roll, pitch, yaw) taking move_s, then a hold of hold_s.
 void moveAndHold(ScriptedOrientation& s, double move_s, double hold_s, double roll, double pitch, double yaw) {
   const double t = s.keyframes.back().t_s + move_s;

@@ -70,6 +70,17 @@ TriadErrorParams consumerMag(double field_uT) {
   return p;
 }
 
+// [datasheets] white noise of current consumer 9-axis parts: gyroscope 0.015 deg/s/√Hz
+// (ICM-20948; BMI270 0.007), accelerometer 200 µg/√Hz (ICM-20948 230, BMI270 160),
+// magnetometer 0.6 µT RMS per sample (AK09916, BMM150: 0.3-0.6). Everything else as consumer.
+ImuErrorParams memsErrors(double field_uT) {
+  ImuErrorParams e{consumerGyro(), consumerAccel(), consumerMag(field_uT)};
+  e.gyro.noise_density = Vec3::Constant(0.015 * kDeg);
+  e.accel.noise_density = Vec3::Constant(0.2 * kMilliG);
+  e.mag.noise_sigma = Vec3::Constant(0.6);
+  return e;
+}
+
 TriadErrorParams uncalibratedMag(double field_uT) {
   TriadErrorParams p = consumerMag(field_uT);
   // [K&S] Table 2 as it stands: D_diag ~ U(0.5, 1.5), ζ, η, ρ ~ U(-30°, 30°),
@@ -97,15 +108,16 @@ const char* imuGradeName(ImuGrade g) {
     case ImuGrade::kIdeal: return "ideal";
     case ImuGrade::kConsumer: return "consumer";
     case ImuGrade::kUncalibrated: return "uncalibrated";
+    case ImuGrade::kMems: return "mems";
   }
   return "unknown";
 }
 
 ImuGrade parseImuGrade(std::string_view name) {
-  for (const ImuGrade g : {ImuGrade::kIdeal, ImuGrade::kConsumer, ImuGrade::kUncalibrated}) {
+  for (const ImuGrade g : {ImuGrade::kIdeal, ImuGrade::kConsumer, ImuGrade::kUncalibrated, ImuGrade::kMems}) {
     if (name == imuGradeName(g)) return g;
   }
-  throw std::invalid_argument("unknown IMU grade '" + std::string(name) + "' (ideal, consumer, uncalibrated)");
+  throw std::invalid_argument("unknown IMU grade '" + std::string(name) + "' (ideal, consumer, uncalibrated, mems)");
 }
 
 ImuErrorParams imuErrorParams(ImuGrade grade, double field_strength_uT) {
@@ -113,6 +125,7 @@ ImuErrorParams imuErrorParams(ImuGrade grade, double field_strength_uT) {
     case ImuGrade::kIdeal: return {};
     case ImuGrade::kConsumer: return {consumerGyro(), consumerAccel(), consumerMag(field_strength_uT)};
     case ImuGrade::kUncalibrated: return {consumerGyro(), consumerAccel(), uncalibratedMag(field_strength_uT)};
+    case ImuGrade::kMems: return memsErrors(field_strength_uT);
   }
   return {};
 }

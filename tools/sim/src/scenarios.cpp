@@ -6,6 +6,7 @@
 
 #include "headingd/sim/scenario.hpp"
 #include "headingd/sim/calibration_scenarios.hpp"
+#include "headingd/sim/motion_scenarios.hpp"
 
 namespace headingd::sim {
 
@@ -164,6 +165,17 @@ const char* activityName(Activity a) {
   return "unknown";
 }
 
+Scenario scriptedScenario(std::string name, std::string description, ScriptedOrientation script) {
+  Scenario s;
+  s.name = std::move(name);
+  s.description = std::move(description);
+  s.phases = {phase(Activity::kStanding, script.keyframes.back().t_s)};
+  s.initial_heading_deg = script.keyframes.front().yaw_deg;
+  s.gps = {0.0, 0.0, 10};
+  s.scripted = std::move(script);
+  return s;
+}
+
 double Scenario::durationS() const {
   return std::accumulate(phases.begin(), phases.end(), 0.0, [](double sum, const Phase& p) { return sum + p.duration_s; });
 }
@@ -182,10 +194,11 @@ PhaseTime phaseAt(const Scenario& s, double t_s) {
 
 std::vector<std::string> scenarioNames() {
   return {"thesis-declination", "urban-walk", "static-disturbed", "crawl", "run",
-          "calib-six-position", "calib-rotation", "calib-rotation-long"};
+          "calib-six-position", "calib-rotation", "calib-rotation-long",
+          "shake", "shake-any", "handheld", "slow-rotation"};
 }
 
-Scenario makeScenario(std::string_view name) {
+Scenario makeScenario(std::string_view name, std::uint64_t seed) {
   if (name == "thesis-declination") return thesisDeclination();
   if (name == "urban-walk") return urbanWalk();
   if (name == "static-disturbed") return staticDisturbed();
@@ -194,6 +207,18 @@ Scenario makeScenario(std::string_view name) {
   if (name == "calib-six-position") return calibSixPosition();
   if (name == "calib-rotation") return calibRotation();
   if (name == "calib-rotation-long") return calibRotationLong();
+  if (name == "shake") {
+    return shakeScenario(drawShakeAlongSensorAxis(seed), "shake",
+                         "Shaken along one sensor axis (seeded: any attitude, axis, 2-8 Hz, 2-7 g) for 60 s with "
+                         "little rotation (2 deg hand drift, 0.1 deg tremor); 10 s still before, 30 s after.");
+  }
+  if (name == "shake-any") {
+    return shakeScenario(drawShakeAnyDirection(seed), "shake-any",
+                         "Shaken along any direction (seeded: any attitude and direction, 0.5-10 Hz, 0.5-8 g) "
+                         "for 60 s with little rotation; 10 s still before, 30 s after.");
+  }
+  if (name == "handheld") return handheldScenario(seed);
+  if (name == "slow-rotation") return slowRotationScenario(seed);
   throw std::invalid_argument("unknown scenario '" + std::string(name) + "'");
 }
 

@@ -1,5 +1,6 @@
 #include "headingd/sim/scripted_trajectory.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -55,6 +56,18 @@ Quat rotationVector(const Vec3& v) {
   return Quat(Eigen::AngleAxisd(angle, v / angle));
 }
 
+// Displacement along the shake direction (sensor axes) at t, and whether it is under way.
+double shakeEnvelope(const LinearShake& shake, double t) {
+  if (t <= shake.start_s || t >= shake.end_s) return 0.0;
+  const double fade = std::max(shake.fade_s, 1e-9);
+  return smootherstep((t - shake.start_s) / fade) * smootherstep((shake.end_s - t) / fade);
+}
+
+double shakeDisplacement(const LinearShake& shake, double t) {
+  const double omega = 2.0 * kPi * shake.frequency_hz;
+  return -(shake.peak_accel_m_s2 / (omega * omega)) * shakeEnvelope(shake, t) * std::sin(omega * (t - shake.start_s));
+}
+
 }  // namespace
 
 Quat scriptedAttitude(const ScriptedOrientation& script, double t_s) {
@@ -84,6 +97,12 @@ Trajectory generateScriptedTrajectory(const Scenario& scenario, double rate_hz, 
       throw std::invalid_argument("scripted keyframes must be in increasing time order");
     }
   }
+  for (const LinearShake& shake : script.shakes) {
+    if (!(shake.frequency_hz > 0.0) || !(shake.end_s >= shake.start_s) ||
+        std::abs(shake.direction_body.norm() - 1.0) > 1e-9) {
+      throw std::invalid_argument("a shake needs a positive frequency, end >= start and a unit direction");
+    }
+  }
   const double dt = 1.0 / rate_hz;
   const auto rows = static_cast<std::size_t>(std::floor(scenario.durationS() * rate_hz + 1e-9)) + 1;
   // Physiological tremor 6-12 Hz; the hand's slow drift 0.1-0.5 Hz.
@@ -99,7 +118,9 @@ Trajectory generateScriptedTrajectory(const Scenario& scenario, double rate_hz, 
     const double t = (static_cast<double>(i) - 1.0) * dt;
     scripted[i] = scriptedAttitude(script, t);
     attitude[i] = (scripted[i] * rotationVector(tremor(t) + drift(t))).normalized();
-    position[i] = centre + attitude[i] * script.lever_arm_body_m;
+    Vec3 offset_body = script.lever_arm_body_m;
+    for (const LinearShake& shake : script.shakes) offset_body += shakeDisplacement(shake, t) * shake.direction_body;
+    position[i] = centre + attitude[i] * offset_body;
   }
 
   Trajectory out = kinematicTrajectory(scenario, rate_hz, attitude, position);
@@ -108,7 +129,9 @@ Trajectory generateScriptedTrajectory(const Scenario& scenario, double rate_hz, 
     TruthState& s = out.states[k];
     s.path_heading_rad = core::eulerZyx(scripted[i]).yaw_rad;
     const double scripted_rate = rateBetween(scripted[i - 1], scripted[i + 1], 2.0 * dt).norm();
-    s.moving = scripted_rate > script.moving_rate_deg_s * kDeg;
+    bool shaking = false;
+    for (const LinearShake& shake : script.shakes) shaking = shaking || shakeEnvelope(shake, s.t_s) > 0.0;
+    s.moving = scripted_rate > script.moving_rate_deg_s * kDeg || shaking;
   }
   return out;
 }

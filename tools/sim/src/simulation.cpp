@@ -45,7 +45,7 @@ SimResult simulate(const SimConfig& config, const core::WorldMagneticModel& wmm)
   validate(config);
   SimResult r;
   r.config = config;
-  r.scenario = makeScenario(config.scenario);
+  r.scenario = makeScenario(config.scenario, config.seed);
   r.wmm = wmm.field({config.origin.latitude_deg, config.origin.longitude_deg, config.origin.height_m / 1000.0},
                     core::decimalYear(config.year, config.month, config.day));
   r.wmm_model_name = wmm.modelName();

@@ -23,7 +23,9 @@ class AttitudeEkf {
   // The model is h(q) = M(q) f_n with f_n = (0, 0, -g) the specific force at rest in NED.
   // Eq. 3.7a as printed uses H_k q̂ for the prediction; for the quadratic h that equals
   // 2 h(q̂), so we use the EKF form of eq. 2.9a, h(q̂).
-  void updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2);
+  // Returns the turn the update gave the attitude about NED north and east (rad; zero
+  // before the first update has put P in its tilt form, start-up only).
+  Eigen::Vector2d updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2);
 
   // Replaces the attitude (back-tracking of §3.1, heading corrections of ch. 4). The
   // covariance is kept: the replacement is a better estimate of the same state.
@@ -48,7 +50,7 @@ class AttitudeEkf {
  private:
   void normalise();
   void updateGravityGeneral(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down);
-  void updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down);
+  Eigen::Vector2d updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down);
   void keepHeadingOutOfTilt(const Vec4& q_prior);
 
   Vec4 q_;

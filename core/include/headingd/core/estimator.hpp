@@ -1,18 +1,19 @@
 #pragma once
 // The whole attitude and magnetic-heading estimator: pure and deterministic (same samples
 // in, same estimates out), no I/O, no clocks. Per sample:
-//   gate (timestamps, NaN) → gyro bias (rest) → EKF predict (Henriksson eq. 3.2-3.3)
-//   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → d_k and R level (eq. 3.1, 3.4, hysteresis) → back-tracking on a step up (§3.1)
-//   → EKF gravity update (eq. 3.5-3.8) → magnetometer heading observer (eq. 4.2)
-//   → background gyro-only attitudes (§3.1, eq. 4.4) → heading definition (§3.3).
+//   gate (timestamps, NaN) → gyro bias (still blocks) → EKF predict (Henriksson eq. 3.2-3.3)
+//   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → d_k and R level (eq. 3.1, 3.4,
+//   hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's turn, in motion)
+//   → magnetometer heading observer (eq. 4.2) with the gyro-only heading restored at a
+//   disturbance's onset (eq. 4.4, heading_corrections.hpp) → heading definition (§3.3).
 #include <cstdint>
 
 #include "headingd/core/accel_disturbance.hpp"
 #include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/attitude_ekf.hpp"
-#include "headingd/core/background_attitudes.hpp"
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/gyro_bias_estimator.hpp"
+#include "headingd/core/heading_corrections.hpp"
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/core/imu_sample.hpp"
 #include "headingd/core/mag_disturbance.hpp"
@@ -45,7 +46,7 @@ struct EstimatorOutput {
 
 struct EstimatorCounters {
   SampleCounters samples;
-  std::uint64_t backtracks = 0;          // R stepped up and the background attitude took over
+  std::uint64_t bias_still_blocks = 0;   // still blocks that measured the gyro bias
   std::uint64_t mag_no_heading = 0;      // field too close to vertical for a heading
   std::uint64_t mag_disturbed = 0;       // samples with K = 0 for a disturbed field
   std::uint64_t mag_heading_restores = 0;  // disturbance onsets that restored ψ_g (eq. 4.4)
@@ -75,7 +76,7 @@ class Estimator {
   void initialise(const ImuSample& s, bool mag_usable);
   void step(const ImuSample& s, double dt_s, bool mag_usable);
   void correctHeading(const Vec3& mag_uT, double dt_s);
-  void restoreBackgroundHeading();
+  void restoreGyroHeading();
   void publish(std::int64_t t_ns);
 
   EstimatorParams p_;
@@ -87,14 +88,14 @@ class Estimator {
   GyroFrameLowPass mag_prefilter_;
   double mag_sample_dt_s_ = 0.0;  // time since the last field sample (a slower magnetometer)
   MotionLevelSelector motion_;
-  BackgroundAttitudes background_;
+  HeadingCorrectionLog heading_corrections_;
   HeadingDefinitionSelector heading_definition_;
   MagDisturbanceDetector mag_disturbance_;
   double mag_seconds_ = 0.0;  // time since the first usable field sample
+  double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)
   bool initialised_ = false;
   bool heading_aligned_ = false;
   EstimatorOutput out_;
-  std::uint64_t backtracks_ = 0;
   std::uint64_t mag_no_heading_ = 0;
   std::uint64_t mag_disturbed_ = 0;
   std::uint64_t mag_heading_restores_ = 0;

@@ -1,69 +1,74 @@
 #pragma once
-// Gyroscope bias from rest.
+// Gyroscope bias: a three-state Kalman filter (the bias in sensor axes) with two kinds of
+// measurement, so that every source of information about the bias counts and none can lock
+// a wrong estimate in.
 //
-// Method: a rest detector (gyro and accelerometer both steady over a window) gates a
-// low-pass filter of the raw gyro. Why this one: at rest the true rate is zero (Earth's
-// 15°/h is far below the noise of body-worn MEMS gyros), so the mean rate *is* the bias and
-// needs no model; a person wearing the device stands still often (traffic lights, pauses),
-// and BROAD's trials begin and end at rest. Estimating the bias in motion needs an
-// observable reference (accelerometer for roll/pitch, magnetometer for yaw) whose errors
-// (accelerations, disturbed fields) would leak into the bias; that is the MAGYQ work of a
-// later roadmap step. Between rests the last estimate is held.
+//  - At rest (rest_detector.hpp) the mean rate ω̄ is the bias (Earth's 15°/h is far below
+//    the noise of body-worn MEMS gyros): measurement y = ω̄, H = I.
+//  - In motion the accelerometer says what the gyro got wrong about tilt: a bias error
+//    β = b - b̂ turns the predicted attitude by R β per second (R: sensor to NED), and the
+//    EKF's gravity update turns it back. Over the time the gravity filters average (their lag
+//    is taken into R by low-passing it), the update's turn about NED north and east per
+//    second is -(R β)_h: measurement y = -turn/dt, H = R̄_h (the horizontal rows of the
+//    low-passed R). The vertical part of the bias is not seen this way; the heading observer
+//    pulls the drift it causes back towards the magnetometer.
+// The same structure carries VQF's motion bias estimation (Laidig & Seel 2023); MAGYQ
+// (Renaudin & Combettes 2014, §3) keeps the gyro bias as filter states for the same reason.
+//
+// Every coefficient comes from a time: the bias wanders as a random walk of
+// bias_walk_rad_s_per_sqrt_s; a measurement process of noise density N gives, in steady state,
+// a filter that follows with time constant τ = √(N / walk²). So N = τ² walk² for the rest
+// (bias_time_constant_s) and for the motion measurement (bias_motion_time_constant_s), and a
+// sample of period dt is a measurement of variance N / dt: the filter behaves the same at
+// any sample rate.
+#include <Eigen/Core>
+#include <cstdint>
+
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/low_pass.hpp"
-#include "headingd/core/noise_floor.hpp"
 #include "headingd/core/quaternion.hpp"
+#include "headingd/core/rest_detector.hpp"
 
 namespace headingd::core {
 
-// Rest: for at least rest_min_duration_s, the RMS deviation of gyro and accelerometer from
-// their low-passed means stays below the thresholds (the gyro's: rest_gyro_threshold_rad_s
-// or 2.5 times the gyro's own learned noise floor, whichever is larger, up to
-// rest_gyro_max_threshold_rad_s; the accelerometer's stays absolute, since it is what tells
-// a person standing from one moving) (a variance test, so that one noisy
-// sample does not end a rest), and the mean rate itself is close to the current bias (a
-// slow steady turn is not rest).
-class RestDetector {
- public:
-  explicit RestDetector(const EstimatorParams& p)
-      : p_(p),
-        gyro_mean_(p.rest_filter_time_constant_s),
-        accel_mean_(p.rest_filter_time_constant_s),
-        gyro_deviation2_(p.rest_filter_time_constant_s),
-        accel_deviation2_(p.rest_filter_time_constant_s),
-        gyro_floor_(4.0 * p.rest_filter_time_constant_s) {}
-  // current_bias: the rate that counts as zero, or nullptr before there is an estimate (a
-  // bias larger than the threshold must not keep the detector from ever seeing rest).
-  bool update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* current_bias, double dt_s);
-  bool atRest() const { return rest_time_s_ >= p_.rest_min_duration_s; }
-
- private:
-  const EstimatorParams& p_;
-  LowPass<Vec3> gyro_mean_;
-  LowPass<Vec3> accel_mean_;
-  LowPass<double> gyro_deviation2_;
-  LowPass<double> accel_deviation2_;
-  NoiseFloor gyro_floor_;
-  double rest_time_s_ = 0.0;
-};
-
 class GyroBiasEstimator {
  public:
-  explicit GyroBiasEstimator(const EstimatorParams& p) : p_(p), rest_(p), alpha_(p.bias_time_constant_s) {}
+  explicit GyroBiasEstimator(const EstimatorParams& p);
 
-  // Feeds one raw sample; returns the current bias estimate.
-  const Vec3& update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s);
+  // Per sample, before the attitude filter: the bias wanders, and at rest ω̄ measures it.
+  // mag_uT: the field sample, or nullptr when there is none or it is disturbed (rest test).
+  // Returns the bias to take off this sample's rate.
+  const Vec3& update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s);
+
+  // After the gravity update of the same sample, unless the sensor is at rest: that update
+  // turned the attitude q_nb by turn_rad about NED north and east. (The same weight at every
+  // R level: a more disturbed accelerometer gets a smaller gain in the EKF, so the turns it
+  // causes are no noisier.)
+  void updateFromTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s);
+
+  // The horizontal rows of R(q_nb), low-passed, without a measurement (samples where the
+  // correction is not used must still move the low-pass).
+  void followAttitude(const Quat& q_nb, double dt_s);
+
   const Vec3& bias() const { return bias_; }
   bool atRest() const { return rest_.atRest(); }
-  // Seconds of rest the estimate is built on (0 until the first rest).
+  // Seconds of still blocks the estimate has seen (0 until the first), and how many.
   double restSeconds() const { return rest_seconds_; }
+  std::uint64_t stillBlocks() const { return still_blocks_; }
+  // Standard deviation of each component (rad/s), from the filter's covariance.
+  Vec3 sigma() const { return P_.diagonal().cwiseSqrt(); }
 
  private:
+  void clampBias();
+
   const EstimatorParams& p_;
   RestDetector rest_;
-  LowPassAlpha alpha_;  // of the bias low-pass
   Vec3 bias_ = Vec3::Zero();
+  Mat3 P_;
+  double initial_variance_;
+  LowPass<Eigen::Matrix<double, 2, 3>> horizontal_rows_;  // R̄_h
   double rest_seconds_ = 0.0;
+  std::uint64_t still_blocks_ = 0;
 };
 
 }  // namespace headingd::core

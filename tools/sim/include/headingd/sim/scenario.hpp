@@ -2,6 +2,7 @@
 // A scenario: what the person does, phase by phase, where the magnetic field is disturbed
 // and how good the GPS sky is. Pure data; trajectory.hpp turns it into motion.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -61,15 +62,31 @@ struct OrientationKeyframe {
   double yaw_deg = 0.0;
 };
 
+// A linear shake of the sensor on top of the scripted rotation: its position moves back and
+// forth along a fixed direction in sensor axes, x(t) = -(A/ω²) e(t) sin(ω (t - start)), so
+// the acceleration along it is A sin(ω (t - start)) while the envelope e(t) is 1. e rises
+// and falls along a smootherstep over fade_s at both ends, so the position stays bounded
+// and the acceleration continuous.
+struct LinearShake {
+  core::Vec3 direction_body = core::Vec3::UnitX();  // unit vector, sensor axes
+  double peak_accel_m_s2 = 0.0;                     // A
+  double frequency_hz = 1.0;                        // ω / 2π
+  double start_s = 0.0;
+  double end_s = 0.0;
+  double fade_s = 1.0;
+};
+
 struct ScriptedOrientation {
   std::vector<OrientationKeyframe> keyframes;  // t_s increasing, the first at 0
+  std::vector<LinearShake> shakes;             // may overlap; the displacements add
   core::Vec3 lever_arm_body_m = core::Vec3::Zero();
   double height_m = 1.0;            // of the rotation centre above the ground
   // Hand tremor: small rotations (a seeded sum of sinusoids at 6-12 Hz, physiological tremor)
   // plus a slow drift of the hand (0.1-0.5 Hz); 0 on a table.
   double tremor_deg = 0.0;
   double hand_drift_deg = 0.0;
-  // The truth's `moving` flag: the scripted rate (without tremor) above this.
+  // The truth's `moving` flag: the scripted rate (without tremor) above this, or a shake
+  // under way.
   double moving_rate_deg_s = 2.0;
 };
 
@@ -86,6 +103,10 @@ struct Scenario {
   double durationS() const;
 };
 
+// A scripted scenario: one standing phase as long as the script (outdoors, undisturbed field,
+// clean GPS); the person holds or turns the sensor and does not walk.
+Scenario scriptedScenario(std::string name, std::string description, ScriptedOrientation script);
+
 // Where t falls: the phase index and the time since that phase began. Before 0 it is the
 // start of the first phase, after the end the end of the last one.
 struct PhaseTime {
@@ -97,7 +118,9 @@ PhaseTime phaseAt(const Scenario& s, double t_s);
 
 // The names makeScenario knows, in the order --help lists them.
 std::vector<std::string> scenarioNames();
-// Throws std::invalid_argument for an unknown name.
-Scenario makeScenario(std::string_view name);
+// Throws std::invalid_argument for an unknown name. Most scenarios are the same for every
+// seed (the seed changes only the noise); the motion-study scenarios
+// (motion_scenarios.hpp) draw their motion from it.
+Scenario makeScenario(std::string_view name, std::uint64_t seed = 1);
 
 }  // namespace headingd::sim

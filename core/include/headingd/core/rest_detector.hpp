@@ -1,0 +1,100 @@
+#pragma once
+// Still stretches of the sensor and the gyro bias they show (gyro_bias_estimator.hpp).
+//
+// The sensor is still when nothing accelerates it and it turns slowly at most: a device on a
+// table, a person standing, a hand holding it. Its rate is then judged in blocks of
+// rest_min_duration_s. A block counts when, all through it:
+//  - the gyro and the accelerometer are steady: the RMS deviations of ω and a from their
+//    low-passed means (rest_filter_time_constant_s) stay below their bounds (the gyro's:
+//    rest_gyro_threshold_rad_s or 2.5 times the gyro's own learned noise floor, whichever is
+//    larger, up to rest_gyro_max_threshold_rad_s; the accelerometer's is absolute, since it
+//    is what tells a person standing from one moving). A variance test, so that one noisy
+//    sample does not end a rest;
+//  - the mean rate is no more than a plausible bias plus a slow turn;
+// and when the world's vectors say how far it turned: from the block's start to its end the
+// low-passed directions of gravity (accelerometer) and, when the field is usable and
+// undisturbed all through, of the field (magnetometer) turn as the sensor turns, Δu = u × θ.
+// Their least-squares turn θ (gravity sees the part about horizontal axes, the field the part
+// about the vertical) must be below rest_max_turn_rate_rad_s times the block's length, and
+// together they must fit one rotation (else something accelerated the sensor or disturbed
+// the field). The block's bias is then (∫ω̄ dt - θ) / T.
+//
+// Why: a slow steady turn or a hand's slow drift (1-3 deg/s) keeps the gyro and the
+// accelerometer steady; taking its mean rate as bias (what a gyro-only rest test does) leaves
+// a bias error of that rate, which the tilt filter turns into degrees of tilt. Gravity and the
+// field measure the turn itself. Nothing here compares with the current bias estimate: a
+// test against the estimate (|ω̄ - b̂| small) locks a wrong estimate in, since the true rest
+// then fails it. Without a usable field, a turn about the vertical is not seen: the block then
+// counts that part of its rate as bias. Whole blocks, so that the first moments of a motion,
+// which no test sees at once, are thrown away with the block they end; and after a motion the
+// first block starts only once the low-passes have settled from it (3 of their time
+// constants of steadiness; at start-up they begin as running means and need one).
+#include "headingd/core/estimator_params.hpp"
+#include "headingd/core/low_pass.hpp"
+#include "headingd/core/noise_floor.hpp"
+#include "headingd/core/quaternion.hpp"
+
+namespace headingd::core {
+
+// A still block that ended with this sample: the bias it shows and its length.
+struct RestBlock {
+  Vec3 bias_rad_s = Vec3::Zero();  // mean rate less the turn gravity and the field saw
+  double duration_s = 0.0;
+  // Covariance of bias_rad_s from the block's own noise: the gyro's white noise over the
+  // block and the uncertainty of the measured turn.
+  Mat3 covariance = Mat3::Zero();
+};
+
+class RestDetector {
+ public:
+  explicit RestDetector(const EstimatorParams& p);
+
+  // mag_uT: the field sample, or nullptr when there is none or it is disturbed. Returns true
+  // when a still block ended with this sample (block() then holds it).
+  bool update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s);
+  // At rest: the last block was still and the sensor has stayed steady since.
+  bool atRest() const { return at_rest_; }
+  const RestBlock& block() const { return block_; }
+
+ private:
+  // One vector's low-passed mean, the mean squared deviation of the samples from it, and its
+  // direction when the current block began. Both low-passes begin as running means (weight
+  // dt/t until t reaches the time constant), so the first samples do not weigh more than later ones.
+  struct SteadyVector {
+    explicit SteadyVector(double time_constant_s) : alpha(time_constant_s) {}
+    double update(const Vec3& v, double dt_s);  // returns the RMS deviation
+    void markStart() { start_direction = mean.normalized(); }
+    Vec3 direction() const { return mean.normalized(); }
+    // Standard deviation of the mean's direction (rad): white noise σ through a first-order
+    // low-pass has σ √(dt / 2τ).
+    double directionSigma(double dt_s, double time_constant_s) const;
+    LowPassAlpha alpha;
+    double elapsed_s = 0.0;
+    Vec3 mean = Vec3::Zero();
+    double deviation2 = 0.0;
+    Vec3 start_direction = Vec3::Zero();
+  };
+
+  void startBlock(bool with_mag);
+  // The block's turn from gravity (and the field) and its covariance, or false if they do not
+  // fit one rotation.
+  bool measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) const;
+
+  const EstimatorParams& p_;
+  SteadyVector gyro_;
+  SteadyVector accel_;
+  SteadyVector mag_;
+  NoiseFloor gyro_floor_;
+  bool at_rest_ = false;
+  double steady_s_ = 0.0;  // how long the steady tests have held
+  // Time constants of steadiness before a block may start: one at start-up (the running means
+  // have then seen a time constant's samples), three after a motion (they still hold it).
+  double settle_time_constants_ = 1.0;
+  bool in_block_ = false;
+  bool mag_in_block_ = false;  // the field was usable when the block began and since
+  double block_time_s_ = 0.0;
+  Vec3 block_rotation_ = Vec3::Zero();  // ∫ ω̄ dt over the block
+  RestBlock block_;
+};
+
+}  // namespace headingd::core

@@ -1,0 +1,151 @@
+#include "headingd/core/rest_detector.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+namespace headingd::core {
+
+namespace {
+
+// Time constants of the low-passes that a steady stretch must last before a block starts.
+constexpr double kSettleTimeConstants = 3.0;
+
+// [u]×: [u]× v = u × v.
+Mat3 skew(const Vec3& u) {
+  Mat3 m;
+  m << 0.0, -u.z(), u.y(),  //
+      u.z(), 0.0, -u.x(),   //
+      -u.y(), u.x(), 0.0;
+  return m;
+}
+
+}  // namespace
+
+RestDetector::RestDetector(const EstimatorParams& p)
+    : p_(p),
+      gyro_(p.rest_filter_time_constant_s),
+      accel_(p.rest_filter_time_constant_s),
+      mag_(p.rest_filter_time_constant_s),
+      gyro_floor_(4.0 * p.rest_filter_time_constant_s) {}
+
+double RestDetector::SteadyVector::update(const Vec3& v, double dt_s) {
+  elapsed_s += dt_s;
+  const double weight = std::max(dt_s / elapsed_s, 1.0 - alpha(dt_s));  // eq. 2.13 after the start
+  mean += weight * (v - mean);
+  deviation2 += weight * ((v - mean).squaredNorm() - deviation2);
+  return std::sqrt(deviation2);
+}
+
+double RestDetector::SteadyVector::directionSigma(double dt_s, double time_constant_s) const {
+  const double norm = mean.norm();
+  if (norm <= 0.0) return 1.0;
+  // A floor of 1e-5 rad keeps the weights finite for a noiseless (simulated) sensor.
+  return std::max(1e-5, std::sqrt(deviation2 * dt_s / (2.0 * time_constant_s)) / norm);
+}
+
+bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) const {
+  // A world-fixed unit vector seen from a sensor that turns by θ (sensor axes) moves by
+  // Δu = u₀ × θ = [u₀]× θ. Least squares for θ, each vector weighted by its direction noise
+  // (the start and the end mean each contribute); for a unit u, [u]×ᵀ [u]× = I - u uᵀ.
+  const double tau = p_.rest_filter_time_constant_s;
+  Mat3 information = Mat3::Zero();
+  Vec3 projected = Vec3::Zero();
+  struct Seen {
+    Vec3 start, end;
+    double variance;
+  };
+  Seen seen[2];
+  int count = 0;
+  seen[count++] = {accel_.start_direction, accel_.direction(), 2.0 * std::pow(accel_.directionSigma(dt_s, tau), 2)};
+  if (mag_in_block_) {
+    seen[count++] = {mag_.start_direction, mag_.direction(), 2.0 * std::pow(mag_.directionSigma(dt_s, tau), 2)};
+  }
+  for (int i = 0; i < count; ++i) {
+    const Vec3& u = seen[i].start;
+    information += (Mat3::Identity() - u * u.transpose()) / seen[i].variance;
+    projected += skew(u).transpose() * (seen[i].end - u) / seen[i].variance;
+  }
+  if (count == 1) {
+    // Gravity alone says nothing about a turn about itself: that part of θ is taken as zero.
+    const Vec3& u = seen[0].start;
+    information += u * u.transpose() / seen[0].variance;
+  }
+  const auto solver = information.ldlt();
+  *turn_rad = solver.solve(projected);
+  *covariance = solver.solve(Mat3::Identity());
+  // What one rotation cannot explain (a linear acceleration, a field that changed) must be
+  // within 4σ of each vector's noise, plus 0.1 deg for the small-angle model.
+  for (int i = 0; i < count; ++i) {
+    const Vec3 residual = seen[i].end - seen[i].start - skew(seen[i].start) * *turn_rad;
+    if (residual.norm() > 4.0 * std::sqrt(seen[i].variance) + 0.0017) return false;
+  }
+  return true;
+}
+
+void RestDetector::startBlock(bool with_mag) {
+  in_block_ = true;
+  block_time_s_ = 0.0;
+  block_rotation_.setZero();
+  accel_.markStart();
+  mag_in_block_ = with_mag;
+  if (with_mag) mag_.markStart();
+}
+
+bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s) {
+  const double gyro_rms = gyro_.update(gyro_rad_s, dt_s);
+  const double accel_rms = accel_.update(accel_m_s2, dt_s);
+  if (mag_uT != nullptr) {
+    mag_.update(*mag_uT, dt_s);
+  } else {
+    // No usable field: its mean starts afresh when one comes back (an old mean would look
+    // like a turn), and the current block goes on without it.
+    mag_ = SteadyVector(p_.rest_filter_time_constant_s);
+    mag_in_block_ = false;
+  }
+  gyro_floor_.update(gyro_rms, dt_s);
+  const double gyro_bound =
+      gyro_floor_.threshold(2.5, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s);
+  const bool steady = gyro_rms < gyro_bound && accel_rms < p_.rest_accel_threshold_m_s2 &&
+                      gyro_.mean.norm() <= p_.bias_max_rad_s + p_.rest_max_turn_rate_rad_s;
+  if (!steady) {
+    steady_s_ = 0.0;
+    // After a motion the low-passed means still hold it for a few time constants.
+    settle_time_constants_ = kSettleTimeConstants;
+    in_block_ = false;
+    at_rest_ = false;
+    return false;
+  }
+  steady_s_ += dt_s;
+  if (steady_s_ < settle_time_constants_ * p_.rest_filter_time_constant_s) return false;
+  if (!in_block_) startBlock(mag_uT != nullptr);
+  block_time_s_ += dt_s;
+  // The low-passed rate: its integral over the block is the turn the low-passed directions
+  // below see (the filter is linear), so the two compare over the same stretch of time.
+  block_rotation_ += gyro_.mean * dt_s;
+  if (block_time_s_ < p_.rest_min_duration_s) return false;
+
+  Vec3 turn;
+  Mat3 turn_covariance;
+  const bool still = measuredTurn(dt_s, &turn, &turn_covariance) &&
+                     turn.norm() <= p_.rest_max_turn_rate_rad_s * block_time_s_;
+  at_rest_ = still;
+  if (still) {
+    const double T = block_time_s_;
+    // ∫ω̄ dt over T carries the gyro's white noise as ∫ω dt does: σ² dt T, σ² the samples'
+    // mean squared deviation.
+    Mat3 covariance = (gyro_.deviation2 * dt_s / T) * Mat3::Identity();
+    // A turn within its own noise (3σ) is taken as none: the sensor lies still, and the
+    // field's noise (a consumer magnetometer's 1 µT is ~1 mrad of direction) would only add
+    // to the gyro's. A turn beyond it is taken off.
+    if (turn.dot(turn_covariance.ldlt().solve(turn)) > 9.0) {
+      block_rotation_ -= turn;
+      covariance += turn_covariance / (T * T);
+    }
+    block_ = {block_rotation_ / T, T, covariance};
+  }
+  startBlock(mag_uT != nullptr);  // the next block begins where this one ended
+  return still;
+}
+
+}  // namespace headingd::core

@@ -1,0 +1,52 @@
+#pragma once
+// Scores of an estimator run on a Recording: BROAD's metric, the same with constant earth
+// and body alignments fitted (how a held-out dataset with its own reference frames is
+// scored), and the tilt figures of a motion episode (the worst inclination error while it
+// lasts, and how soon it is gone after it ends).
+#include <functional>
+#include <vector>
+
+#include "headingd/core/estimator.hpp"
+#include "headingd/core/orientation_error.hpp"
+#include "headingd/study/recording.hpp"
+
+namespace headingd::study {
+
+// The estimator's attitude after each sample (NaN before it has one). `observe`, if given,
+// sees the estimator after every sample (for traces).
+using EstimatorObserver = std::function<void(std::size_t index, const core::Estimator&)>;
+std::vector<core::Quat> runEstimator(const Recording& r, const core::EstimatorParams& params,
+                                     const EstimatorObserver& observe = {});
+
+// Error of each estimate against the truth (NaN where either is unknown).
+std::vector<core::OrientationError> perSampleErrors(const Recording& r, const std::vector<core::Quat>& estimates);
+
+// The constant rotations q_E (earth) and q_B (body) that bring the estimates closest to the
+// truth over the scored samples, truth ≈ q_E ⊗ estimate ⊗ q_B (alternating quaternion means,
+// Markley et al. 2007), and the estimates with them applied.
+std::vector<core::Quat> alignedEstimates(const Recording& r, const std::vector<core::Quat>& estimates);
+
+struct RunScore {
+  core::OrientationError rmse{};          // BROAD's, over the scored samples
+  core::OrientationError aligned_rmse{};  // the same after alignedEstimates
+  double max_inclination_rad = 0.0;       // over the scored samples
+  std::size_t scored = 0;
+  std::size_t failed = 0;  // scored samples without an estimate (counted as 180°)
+};
+RunScore score(const Recording& r, const std::vector<core::Quat>& estimates);
+
+// A motion between rests: from the first to the last scored sample.
+struct EpisodeScore {
+  double motion_start_s = 0.0;
+  double motion_end_s = 0.0;
+  double inclination_rmse_rad = 0.0;      // during the motion
+  double max_inclination_rad = 0.0;       // during the motion
+  double max_inclination_after_rad = 0.0; // from settle_s after its end to the recording's end
+  // Time after the motion's end from which the inclination error stays below `settled_rad`
+  // (infinite if it never does).
+  double settle_time_s = 0.0;
+};
+EpisodeScore scoreEpisode(const Recording& r, const std::vector<core::Quat>& estimates, double settle_s,
+                          double settled_rad);
+
+}  // namespace headingd::study

@@ -1,0 +1,222 @@
+// headingd-study: the estimator on BROAD trials and simulated motions, at any sample rate,
+// scored as tables (issue 17). Runs in memory, two jobs at a time.
+//
+//   headingd-study broad [--dir DIR] [--rate HZ ...] [--set key=value ...] [--config TOML]
+//   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--set ...]
+//   ... --trace FILE  (one run: per-sample diagnostics as CSV)
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "headingd/core/params_toml.hpp"
+#include "headingd/core/wmm_coefficients.hpp"
+#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/sim/simulation.hpp"
+#include "headingd/study/resample.hpp"
+#include "headingd/study/scoring.hpp"
+
+namespace {
+
+using namespace headingd;
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+core::EstimatorParams loadParams(const std::string& config, const std::vector<std::string>& sets) {
+  std::string text = config.empty() ? std::string() : replay::readMaybeGzipFile(config);
+  if (!sets.empty()) {
+    if (text.find("[estimator]") == std::string::npos) text += "\n[estimator]\n";
+    for (const std::string& s : sets) text += s + "\n";  // later keys of a table are errors: --set replaces none
+  }
+  return text.empty() ? core::EstimatorParams{} : core::parseEstimatorParams(text, config.empty() ? "--set" : config);
+}
+
+template <typename Job>
+void runParallel(std::size_t count, const Job& job) {
+  std::atomic<std::size_t> next{0};
+  const unsigned workers = std::max(1u, std::min(std::thread::hardware_concurrency(), 8u));
+  std::vector<std::thread> threads;
+  for (unsigned w = 0; w < workers; ++w) {
+    threads.emplace_back([&] {
+      for (std::size_t i = next++; i < count; i = next++) job(i);
+    });
+  }
+  for (auto& t : threads) t.join();
+}
+
+std::vector<std::uint64_t> parseSeeds(const std::string& text) {
+  std::vector<std::uint64_t> seeds;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    const auto dash = part.find('-');
+    if (dash == std::string::npos) {
+      seeds.push_back(std::stoull(part));
+    } else {
+      for (auto s = std::stoull(part.substr(0, dash)); s <= std::stoull(part.substr(dash + 1)); ++s) seeds.push_back(s);
+    }
+  }
+  return seeds;
+}
+
+void writeTrace(const std::string& path, const study::Recording& r, const core::EstimatorParams& params) {
+  std::ofstream out(path);
+  out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
+         "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores\n";
+  std::vector<core::EstimatorOutput> outputs;
+  std::vector<std::uint64_t> still_blocks, restores;
+  const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
+    outputs.push_back(e.output());
+    still_blocks.push_back(e.counters().bias_still_blocks);
+    restores.push_back(e.counters().mag_heading_restores);
+  });
+  const auto errors = study::perSampleErrors(r, est);
+  char line[512];
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const auto& o = outputs[i];
+    const auto e = core::eulerZyx(o.q_nb);
+    const auto t = core::eulerZyx(r.truth_nb[i]);
+    std::snprintf(line, sizeof line, "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu\n",
+                  1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
+                  errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
+                  o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
+                  o.gyro_bias_rad_s.z(), o.mag_disturbed ? 1 : 0, static_cast<unsigned long long>(still_blocks[i]),
+                  r.moving[i] ? 1 : 0, e.roll_rad * kDeg, e.pitch_rad * kDeg, t.roll_rad * kDeg, t.pitch_rad * kDeg,
+                  o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]));
+    out << line;
+  }
+}
+
+struct Row {
+  std::string name;
+  double rate_hz = 0.0;
+  study::RunScore score;
+  study::EpisodeScore episode;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"The estimator on BROAD trials and simulated motions at any sample rate, scored."};
+  app.require_subcommand(1);
+  std::string config, trace;
+  std::vector<std::string> sets;
+  std::vector<double> rates;
+  auto common = [&](CLI::App* c) {
+    c->add_option("--config", config, "TOML with an [estimator] table");
+    c->add_option("--set", sets, "an [estimator] key = value, e.g. --set 'gyro_noise_rad_s = 0.03' (repeatable)");
+    c->add_option("--rate", rates, "resample to these rates in Hz (repeatable; none: the recording's own)");
+    c->add_option("--trace", trace, "write per-sample diagnostics of the first run to this CSV");
+  };
+  auto* broad = app.add_subcommand("broad", "BROAD trials: BROAD's metric, the aligned metric, worst inclination");
+  std::string dir = HEADINGD_STUDY_BROAD_DIR, only;
+  broad->add_option("--dir", dir, "folder of NN_name.csv.gz trials")->capture_default_str();
+  broad->add_option("--only", only, "trials whose name contains this");
+  bool centred = false;
+  broad->add_flag("--centred", centred,
+                  "resample accelerometer and magnetometer centred on each sample time (default: the interval "
+                  "that ends at it, as an integrate-and-dump sensor)");
+  common(broad);
+  auto* simulate = app.add_subcommand("sim", "simulator scenarios over seeds: scores and tilt of the motion episode");
+  std::string scenario, seeds_text = "1-10", grade = "consumer", cof = HEADINGD_STUDY_DEFAULT_COF;
+  double settle_s = 5.0;
+  simulate->add_option("--scenario", scenario, "headingd-sim scenario")->required();
+  simulate->add_option("--seeds", seeds_text, "e.g. 1-20 or 1,5,9")->capture_default_str();
+  simulate->add_option("--grade", grade, "IMU grade: consumer, uncalibrated, ideal")->capture_default_str();
+  simulate->add_option("--settle", settle_s, "seconds after the motion from which the recovery is scored")
+      ->capture_default_str();
+  simulate->add_option("--cof", cof, "WMM coefficients")->capture_default_str();
+  double initial_error_deg = 0.0;
+  simulate->add_option("--initial-error-deg", initial_error_deg,
+                       "turn the first sample's accelerometer and magnetometer by this angle (about an axis drawn "
+                       "from the seed): the estimator starts that far off");
+  common(simulate);
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    const core::EstimatorParams params = loadParams(config, sets);
+    if (rates.empty()) rates.push_back(0.0);
+    std::vector<std::string> paths;  // BROAD trials, or
+    std::vector<std::uint64_t> seeds;  // simulator seeds
+    if (*broad) {
+      for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        const std::string f = e.path().filename().string();
+        if (f.ends_with(".csv.gz") && (only.empty() || f.find(only) != std::string::npos)) paths.push_back(e.path());
+      }
+      std::sort(paths.begin(), paths.end());
+    } else {
+      seeds = parseSeeds(seeds_text);
+      (void)sim::makeScenario(scenario);  // an unknown name fails here, once
+    }
+    std::optional<core::WorldMagneticModel> wmm;
+    if (*simulate) wmm.emplace(core::parseWmmCoefficients(replay::readMaybeGzipFile(cof), cof));
+    const std::size_t sources = *broad ? paths.size() : seeds.size();
+    // Simulations are run at the asked rate directly; recordings are resampled.
+    std::vector<Row> rows(sources * rates.size());
+    std::mutex trace_mutex;
+    runParallel(rows.size(), [&](std::size_t job) {
+      const std::size_t source = job / rates.size();
+      const double rate = rates[job % rates.size()];
+      study::Recording r;
+      if (*simulate) {
+        sim::SimConfig c;
+        c.scenario = scenario;
+        c.seed = seeds[source];
+        c.imu_grade = sim::parseImuGrade(grade);
+        if (rate > 0.0) c.imu_rate_hz = rate;
+        r = study::fromSimulation(sim::simulate(c, *wmm), scenario + " seed " + std::to_string(c.seed));
+        if (initial_error_deg != 0.0) study::startOffBy(r, initial_error_deg / kDeg, c.seed);
+      } else {
+        r = study::readBroadTrial(paths[source]);
+        if (rate > 0.0) {
+          r = study::resample(r, rate, centred ? study::VectorWindow::kCentred : study::VectorWindow::kTrailing);
+        }
+      }
+      const auto est = study::runEstimator(r, params);
+      rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg)};
+      if (job == 0 && !trace.empty()) {
+        const std::lock_guard lock(trace_mutex);
+        writeTrace(trace, r, params);
+      }
+    });
+
+    std::printf("%-46s %7s | %6s %6s %6s | %6s %6s %6s | %7s | %7s %7s %7s %7s\n", "run", "Hz", "tot", "head", "incl",
+                "a.tot", "a.head", "a.incl", "maxincl", "ep.incl", "ep.max", "after", "settle");
+    for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+      double sum_tot = 0, sum_incl = 0, sum_atot = 0, worst_max = 0, worst_after = 0, worst_settle = 0;
+      std::size_t n = 0;
+      for (std::size_t job = ri; job < rows.size(); job += rates.size()) {
+        const Row& row = rows[job];
+        const auto& s = row.score;
+        const auto& e = row.episode;
+        std::printf("%-46s %7.1f | %6.2f %6.2f %6.2f | %6.2f %6.2f %6.2f | %7.2f | %7.2f %7.2f %7.2f %7.1f\n",
+                    row.name.c_str(), row.rate_hz, s.rmse.total_rad * kDeg, s.rmse.heading_rad * kDeg,
+                    s.rmse.inclination_rad * kDeg, s.aligned_rmse.total_rad * kDeg, s.aligned_rmse.heading_rad * kDeg,
+                    s.aligned_rmse.inclination_rad * kDeg, s.max_inclination_rad * kDeg,
+                    e.inclination_rmse_rad * kDeg, e.max_inclination_rad * kDeg, e.max_inclination_after_rad * kDeg,
+                    e.settle_time_s);
+        sum_tot += s.rmse.total_rad * kDeg;
+        sum_incl += s.rmse.inclination_rad * kDeg;
+        sum_atot += s.aligned_rmse.total_rad * kDeg;
+        worst_max = std::max(worst_max, e.max_inclination_rad * kDeg);
+        worst_after = std::max(worst_after, e.max_inclination_after_rad * kDeg);
+        worst_settle = std::max(worst_settle, e.settle_time_s);
+        ++n;
+      }
+      std::printf("MEAN %-41s %7.1f | %6.2f %6s %6.2f | %6.2f %6s %6s | %7s | %7s %7.2f %7.2f %7.1f  (worst)\n", "",
+                  rates[ri], sum_tot / n, "", sum_incl / n, sum_atot / n, "", "", "", "", worst_max, worst_after,
+                  worst_settle);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "headingd-study: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
