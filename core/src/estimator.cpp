@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "headingd/core/mag_heading_observer.hpp"
 
@@ -126,8 +127,19 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   // (issue 17: removing it took BROAD from 2.03 to 1.90 deg, at 50 Hz from 3.60 to 2.30 deg,
   // and halved the tilt peaks of simulated hand-held motion).
   const MotionLevel level = motion_.update(disturbance_.update(s.accel_m_s2, dt_s));
+  double accel_noise = accelNoiseFor(level, p_);
+  static const double kappa = std::getenv("KAPPA") ? std::atof(std::getenv("KAPPA")) : -1.0;
+  static const double tau_z = std::getenv("TAUZ") ? std::atof(std::getenv("TAUZ")) : 2.0;
+  static const double tau_d = std::getenv("TAUD") ? std::atof(std::getenv("TAUD")) : 1.0;
+  if (kappa >= 0.0) {
+    if (!residual_lp_) { residual_lp_.emplace(tau_z); residual_d_.emplace(tau_d); }
+    const Vec3 z = residual_lp_->update(increment, gravity_measurement, dt_s);
+    const double d = residual_d_->update((gravity_measurement - z).squaredNorm(), dt_s);
+    accel_noise = std::sqrt(p_.accel_noise_standing_m_s2 * p_.accel_noise_standing_m_s2 + kappa * d);
+    out_.accel_disturbance = d;
+  }
   const Eigen::Vector2d tilt_turn =
-      ekf_.updateGravity(gravity_measurement, accelNoiseFor(level, p_), p_.gravity_m_s2);
+      ekf_.updateGravity(gravity_measurement, accel_noise, p_.gravity_m_s2);
   tilt_seconds_ += dt_s;
   // The turn measures the bias once the tilt has settled from its start (the first turns
   // correct the start, not a drift).

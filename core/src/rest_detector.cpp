@@ -27,7 +27,9 @@ RestDetector::RestDetector(const EstimatorParams& p)
       gyro_(p.rest_filter_time_constant_s),
       accel_(p.rest_filter_time_constant_s),
       mag_(p.rest_filter_time_constant_s),
-      gyro_floor_(4.0 * p.rest_filter_time_constant_s) {}
+      gyro_floor_(4.0 * p.rest_filter_time_constant_s),
+      accel_floor_(4.0 * p.rest_filter_time_constant_s),
+      mag_floor_(4.0 * p.rest_filter_time_constant_s) {}
 
 double RestDetector::SteadyVector::update(const Vec3& v, double dt_s) {
   elapsed_s += dt_s;
@@ -37,19 +39,31 @@ double RestDetector::SteadyVector::update(const Vec3& v, double dt_s) {
   return std::sqrt(deviation2);
 }
 
-double RestDetector::SteadyVector::directionSigma(double dt_s, double time_constant_s) const {
+double RestDetector::SteadyVector::directionSigma(const NoiseFloor& floor, double dt_s, double time_constant_s) const {
   const double norm = mean.norm();
   if (norm <= 0.0) return 1.0;
-  // A floor of 1e-5 rad keeps the weights finite for a noiseless (simulated) sensor.
-  return std::max(1e-5, std::sqrt(deviation2 * dt_s / (2.0 * time_constant_s)) / norm);
+  // The sensor's own noise: the quietest RMS deviation of the last minute (a turn or a
+  // tremor raises the deviation, and is what the block measures, not noise). A floor of
+  // 1e-5 rad keeps the weights finite for a noiseless (simulated) sensor.
+  const double rms = std::min(std::sqrt(deviation2), floor.value());
+  return std::max(1e-5, rms * std::sqrt(dt_s / (2.0 * time_constant_s)) / norm);
 }
 
 bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) const {
   // A world-fixed unit vector seen from a sensor that turns by θ (sensor axes) moves by
-  // Δu = u₀ × θ = [u₀]× θ. Least squares for θ, each vector weighted by its direction noise
-  // (the start and the end mean each contribute); for a unit u, [u]×ᵀ [u]× = I - u uᵀ.
+  // Δu = u₀ × θ = [u₀]× θ. Gravity and the field each measure θ so, weighted by their
+  // direction noise (the start and the end mean each contribute): in information form
+  // I_m = Σ [u]×ᵀ[u]× / σ² = Σ (I - u uᵀ) / σ² and b_m = Σ [u]×ᵀ Δu / σ².
+  // Two hypotheses: the block lay still (θ = 0), or it turned, θ ~ N(0, σ_p² I) with σ_p half
+  // the largest turn a block may make. Their Bayes factor weighs them (equal prior odds), and
+  // θ is the mixture of the two: taken off in full when the vectors clearly saw a turn, not at
+  // all when they saw only noise (then the gyro's mean alone is the bias, as precise as the
+  // gyro is), in between with the covariance of the mixture. The prior also settles what the
+  // vectors cannot see: the part about gravity when there is no field.
   const double tau = p_.rest_filter_time_constant_s;
-  Mat3 information = Mat3::Zero();
+  const double prior_sigma = 0.5 * p_.rest_max_turn_rate_rad_s * block_time_s_;
+  const double prior_variance = std::max(prior_sigma * prior_sigma, 1e-12);
+  Mat3 measured_information = Mat3::Zero();
   Vec3 projected = Vec3::Zero();
   struct Seen {
     Vec3 start, end;
@@ -57,27 +71,32 @@ bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) c
   };
   Seen seen[2];
   int count = 0;
-  seen[count++] = {accel_.start_direction, accel_.direction(), 2.0 * std::pow(accel_.directionSigma(dt_s, tau), 2)};
+  const double accel_sigma = accel_.directionSigma(accel_floor_, dt_s, tau);
+  seen[count++] = {accel_.start_direction, accel_.direction(), 2.0 * accel_sigma * accel_sigma};
   if (mag_in_block_) {
-    seen[count++] = {mag_.start_direction, mag_.direction(), 2.0 * std::pow(mag_.directionSigma(dt_s, tau), 2)};
+    const double mag_sigma = mag_.directionSigma(mag_floor_, dt_s, tau);
+    seen[count++] = {mag_.start_direction, mag_.direction(), 2.0 * mag_sigma * mag_sigma};
   }
   for (int i = 0; i < count; ++i) {
     const Vec3& u = seen[i].start;
-    information += (Mat3::Identity() - u * u.transpose()) / seen[i].variance;
+    measured_information += (Mat3::Identity() - u * u.transpose()) / seen[i].variance;
     projected += skew(u).transpose() * (seen[i].end - u) / seen[i].variance;
   }
-  if (count == 1) {
-    // Gravity alone says nothing about a turn about itself: that part of θ is taken as zero.
-    const Vec3& u = seen[0].start;
-    information += u * u.transpose() / seen[0].variance;
-  }
-  const auto solver = information.ldlt();
-  *turn_rad = solver.solve(projected);
-  *covariance = solver.solve(Mat3::Identity());
+  // The turning hypothesis: posterior N(θ₁, P₁).
+  const auto turning = (measured_information + Mat3::Identity() / prior_variance).ldlt();
+  const Vec3 turned = turning.solve(projected);
+  const Mat3 turned_covariance = turning.solve(Mat3::Identity());
+  // ln(p(data | still) / p(data | turning)) = ½ ln det(I + σ_p² I_m) - ½ b_mᵀ θ₁.
+  const double log_bayes_still =
+      0.5 * std::log((Mat3::Identity() + prior_variance * measured_information).determinant()) -
+      0.5 * projected.dot(turned);
+  const double p_turning = 1.0 / (1.0 + std::exp(std::clamp(log_bayes_still, -50.0, 50.0)));
+  *turn_rad = p_turning * turned;
+  *covariance = p_turning * turned_covariance + p_turning * (1.0 - p_turning) * turned * turned.transpose();
   // What one rotation cannot explain (a linear acceleration, a field that changed) must be
   // within 4σ of each vector's noise, plus 0.1 deg for the small-angle model.
   for (int i = 0; i < count; ++i) {
-    const Vec3 residual = seen[i].end - seen[i].start - skew(seen[i].start) * *turn_rad;
+    const Vec3 residual = seen[i].end - seen[i].start - skew(seen[i].start) * turned;
     if (residual.norm() > 4.0 * std::sqrt(seen[i].variance) + 0.0017) return false;
   }
   return true;
@@ -95,8 +114,9 @@ void RestDetector::startBlock(bool with_mag) {
 bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s) {
   const double gyro_rms = gyro_.update(gyro_rad_s, dt_s);
   const double accel_rms = accel_.update(accel_m_s2, dt_s);
+  accel_floor_.update(accel_rms, dt_s);
   if (mag_uT != nullptr) {
-    mag_.update(*mag_uT, dt_s);
+    mag_floor_.update(mag_.update(*mag_uT, dt_s), dt_s);
   } else {
     // No usable field: its mean starts afresh when one comes back (an old mean would look
     // like a turn), and the current block goes on without it.
@@ -135,14 +155,8 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
     // ∫ω̄ dt over T carries the gyro's white noise as ∫ω dt does: σ² dt T, σ² the samples'
     // mean squared deviation.
     Mat3 covariance = (gyro_.deviation2 * dt_s / T) * Mat3::Identity();
-    // A turn within its own noise (3σ) is taken as none: the sensor lies still, and the
-    // field's noise (a consumer magnetometer's 1 µT is ~1 mrad of direction) would only add
-    // to the gyro's. A turn beyond it is taken off.
-    if (turn.dot(turn_covariance.ldlt().solve(turn)) > 9.0) {
-      block_rotation_ -= turn;
-      covariance += turn_covariance / (T * T);
-    }
-    block_ = {block_rotation_ / T, T, covariance};
+    covariance += turn_covariance / (T * T);
+    block_ = {(block_rotation_ - turn) / T, T, covariance};
   }
   startBlock(mag_uT != nullptr);  // the next block begins where this one ended
   return still;

@@ -7,6 +7,7 @@
 //   → magnetometer heading observer (eq. 4.2) with the gyro-only heading restored at a
 //   disturbance's onset (eq. 4.4, heading_corrections.hpp) → heading definition (§3.3).
 #include <cstdint>
+#include <optional>
 
 #include "headingd/core/accel_disturbance.hpp"
 #include "headingd/core/gyro_frame_low_pass.hpp"
@@ -86,6 +87,8 @@ class Estimator {
   AccelDisturbanceLevel disturbance_;
   GyroFrameLowPass accel_prefilter_;
   GyroFrameLowPass mag_prefilter_;
+  std::optional<GyroFrameLowPass> residual_lp_;
+  std::optional<LowPass<double>> residual_d_;
   double mag_sample_dt_s_ = 0.0;  // time since the last field sample (a slower magnetometer)
   MotionLevelSelector motion_;
   HeadingCorrectionLog heading_corrections_;

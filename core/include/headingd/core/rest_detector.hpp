@@ -65,9 +65,9 @@ class RestDetector {
     double update(const Vec3& v, double dt_s);  // returns the RMS deviation
     void markStart() { start_direction = mean.normalized(); }
     Vec3 direction() const { return mean.normalized(); }
-    // Standard deviation of the mean's direction (rad): white noise σ through a first-order
-    // low-pass has σ √(dt / 2τ).
-    double directionSigma(double dt_s, double time_constant_s) const;
+    // Standard deviation of the mean's direction (rad) from the sensor's noise floor: white
+    // noise σ through a first-order low-pass has σ √(dt / 2τ).
+    double directionSigma(const NoiseFloor& floor, double dt_s, double time_constant_s) const;
     LowPassAlpha alpha;
     double elapsed_s = 0.0;
     Vec3 mean = Vec3::Zero();
@@ -85,6 +85,8 @@ class RestDetector {
   SteadyVector accel_;
   SteadyVector mag_;
   NoiseFloor gyro_floor_;
+  NoiseFloor accel_floor_;  // kept through the field's absences (mag_ restarts)
+  NoiseFloor mag_floor_;
   bool at_rest_ = false;
   double steady_s_ = 0.0;  // how long the steady tests have held
   // Time constants of steadiness before a block may start: one at start-up (the running means
