@@ -42,16 +42,4 @@ MotionLevel MotionLevelSelector::update(double d) {
   return level_;
 }
 
-double accelNoiseFor(MotionLevel level, const EstimatorParams& p) {
-  switch (level) {
-    case MotionLevel::kStanding:
-      return p.accel_noise_standing_m_s2;
-    case MotionLevel::kWalking:
-      return p.accel_noise_walking_m_s2;
-    case MotionLevel::kRunning:
-      return p.accel_noise_running_m_s2;
-  }
-  return p.accel_noise_running_m_s2;
-}
-
 }  // namespace headingd::core

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "headingd/core/mag_heading_observer.hpp"
 
@@ -17,12 +16,12 @@ const Mat4 kStartupCovariance = 0.05 * 0.05 * Mat4::Identity();
 // since it started afresh: before, they correct the start.
 constexpr double kBiasSettleTimeConstants = 5.0;
 
-// How long the tilt takes to follow the accelerometer while standing: the prefilter's time
+// How long the tilt takes to follow a quiet accelerometer: the prefilter's time
 // constant plus the EKF's. The EKF's, in steady state, is 2 σ_a / (g σ_ω) for a gravity
 // noise σ_a and a rate noise σ_ω per sample (the tilt's random walk of (σ_ω dt / 2)² per
 // sample against σ_a / g per sample): independent of the sample rate.
 double tiltTimeConstantS(const EstimatorParams& p) {
-  return p.accel_prefilter_time_constant_s + 2.0 * p.accel_noise_standing_m_s2 / (p.gravity_m_s2 * p.gyro_noise_rad_s);
+  return p.accel_prefilter_time_constant_s + 2.0 * p.accel_noise_m_s2 / (p.gravity_m_s2 * p.gyro_noise_rad_s);
 }
 
 }  // namespace
@@ -45,6 +44,7 @@ Estimator::Estimator(const EstimatorParams& params)
       bias_(p_),
       disturbance_(p_.gravity_m_s2, p_.accel_disturbance_time_constant_s),
       accel_prefilter_(p_.accel_prefilter_time_constant_s),
+      gravity_residual_(p_.accel_residual_time_constant_s, p_.accel_disturbance_time_constant_s),
       mag_prefilter_(p_.mag_prefilter_time_constant_s),
       motion_(p_),
       heading_corrections_(p_.backup_reset_period_s),
@@ -76,6 +76,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       // next field sample sets the heading outright (then the observer's running mean).
       // The observer's correction sums restart so that no restore reaches across the hole.
       accel_prefilter_.restart();
+      gravity_residual_.restart(p_.accel_residual_time_constant_s, p_.accel_disturbance_time_constant_s);
       mag_prefilter_.restart();
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
       heading_corrections_.restart();
@@ -126,20 +127,12 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   // its errors over that time (bias, scale) cost more than the accelerations it undoes
   // (issue 17: removing it took BROAD from 2.03 to 1.90 deg, at 50 Hz from 3.60 to 2.30 deg,
   // and halved the tilt peaks of simulated hand-held motion).
-  const MotionLevel level = motion_.update(disturbance_.update(s.accel_m_s2, dt_s));
-  double accel_noise = accelNoiseFor(level, p_);
-  static const double kappa = std::getenv("KAPPA") ? std::atof(std::getenv("KAPPA")) : -1.0;
-  static const double tau_z = std::getenv("TAUZ") ? std::atof(std::getenv("TAUZ")) : 2.0;
-  static const double tau_d = std::getenv("TAUD") ? std::atof(std::getenv("TAUD")) : 1.0;
-  if (kappa >= 0.0) {
-    if (!residual_lp_) { residual_lp_.emplace(tau_z); residual_d_.emplace(tau_d); }
-    const Vec3 z = residual_lp_->update(increment, gravity_measurement, dt_s);
-    const double d = residual_d_->update((gravity_measurement - z).squaredNorm(), dt_s);
-    accel_noise = std::sqrt(p_.accel_noise_standing_m_s2 * p_.accel_noise_standing_m_s2 + kappa * d);
-    out_.accel_disturbance = d;
-  }
-  const Eigen::Vector2d tilt_turn =
-      ekf_.updateGravity(gravity_measurement, accel_noise, p_.gravity_m_s2);
+  // The activity level of §3.1 (d_k with hysteresis) is reported; R_k follows what the
+  // low-pass left in the measurement instead (gravity_residual.hpp).
+  motion_.update(disturbance_.update(s.accel_m_s2, dt_s));
+  const double residual = gravity_residual_.update(increment, gravity_measurement, dt_s);
+  out_.gravity_noise_m_s2 = gravityMeasurementNoise(p_.accel_noise_m_s2, p_.accel_residual_gain, residual);
+  const Eigen::Vector2d tilt_turn = ekf_.updateGravity(gravity_measurement, out_.gravity_noise_m_s2, p_.gravity_m_s2);
   tilt_seconds_ += dt_s;
   // The turn measures the bias once the tilt has settled from its start (the first turns
   // correct the start, not a drift).

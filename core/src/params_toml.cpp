@@ -46,9 +46,9 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"accel_prefilter_time_constant_s", &P::accel_prefilter_time_constant_s, 0.0, 100.0, "s"},
       {"gravity_m_s2", &P::gravity_m_s2, 9.7, 9.9, "m/s^2"},
       {"accel_disturbance_time_constant_s", &P::accel_disturbance_time_constant_s, 1e-3, 100.0, "s"},
-      {"accel_noise_standing_m_s2", &P::accel_noise_standing_m_s2, 1e-4, 1e3, "m/s^2"},
-      {"accel_noise_walking_m_s2", &P::accel_noise_walking_m_s2, 1e-4, 1e3, "m/s^2"},
-      {"accel_noise_running_m_s2", &P::accel_noise_running_m_s2, 1e-4, 1e3, "m/s^2"},
+      {"accel_noise_m_s2", &P::accel_noise_m_s2, 1e-4, 1e3, "m/s^2"},
+      {"accel_residual_gain", &P::accel_residual_gain, 0.0, 1e6, "1"},
+      {"accel_residual_time_constant_s", &P::accel_residual_time_constant_s, 0.0, 100.0, "s"},
       {"disturbance_up_to_walking", &P::disturbance_up_to_walking, 0.0, 1e4, "(m/s^2)^2"},
       {"disturbance_up_to_running", &P::disturbance_up_to_running, 0.0, 1e4, "(m/s^2)^2"},
       {"disturbance_down_to_standing", &P::disturbance_down_to_standing, 0.0, 1e4, "(m/s^2)^2"},
@@ -164,10 +164,6 @@ void validateEstimatorParams(const EstimatorParams& p, const std::string& source
           "disturbance_down_to_walking must be below disturbance_up_to_running (hysteresis)");
   require(p.disturbance_up_to_walking < p.disturbance_up_to_running, "disturbance_up_to_walking",
           "disturbance_up_to_running", "disturbance_up_to_walking must be below disturbance_up_to_running");
-  require(p.accel_noise_standing_m_s2 <= p.accel_noise_walking_m_s2, "accel_noise_standing_m_s2",
-          "accel_noise_walking_m_s2", "accel_noise_standing_m_s2 must not exceed accel_noise_walking_m_s2");
-  require(p.accel_noise_walking_m_s2 <= p.accel_noise_running_m_s2, "accel_noise_walking_m_s2",
-          "accel_noise_running_m_s2", "accel_noise_walking_m_s2 must not exceed accel_noise_running_m_s2");
   require(p.rest_gyro_threshold_rad_s <= p.rest_gyro_max_threshold_rad_s, "rest_gyro_threshold_rad_s",
           "rest_gyro_max_threshold_rad_s", "rest_gyro_threshold_rad_s must not exceed rest_gyro_max_threshold_rad_s");
   require(p.redefine_heading_enter < p.redefine_heading_leave, "redefine_heading_enter", "redefine_heading_leave",

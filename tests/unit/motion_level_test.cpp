@@ -168,18 +168,7 @@ TEST(MotionLevelSelector, UsesTheConfiguredThresholds) {
   EXPECT_EQ(s.update(3.5), MotionLevel::kStanding);
 }
 
-TEST(MotionLevel, AccelNoiseForEachLevelAndNames) {
-  EstimatorParams p;
-  p.accel_noise_standing_m_s2 = 0.1;
-  p.accel_noise_walking_m_s2 = 0.2;
-  p.accel_noise_running_m_s2 = 0.3;
-  EXPECT_EQ(accelNoiseFor(MotionLevel::kStanding, p), 0.1);
-  EXPECT_EQ(accelNoiseFor(MotionLevel::kWalking, p), 0.2);
-  EXPECT_EQ(accelNoiseFor(MotionLevel::kRunning, p), 0.3);
-  // Defaults step by the thesis' factor 10 in variance.
-  const EstimatorParams d;
-  EXPECT_NEAR(std::pow(d.accel_noise_walking_m_s2 / d.accel_noise_standing_m_s2, 2), 10.0, 0.02);
-  EXPECT_NEAR(std::pow(d.accel_noise_running_m_s2 / d.accel_noise_walking_m_s2, 2), 10.0, 0.02);
+TEST(MotionLevel, Names) {
   EXPECT_STREQ(motionLevelName(MotionLevel::kStanding), "standing");
   EXPECT_STREQ(motionLevelName(MotionLevel::kWalking), "walking");
   EXPECT_STREQ(motionLevelName(MotionLevel::kRunning), "running");

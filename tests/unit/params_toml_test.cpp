@@ -47,14 +47,14 @@ TEST(ParamsToml, ValidTableSetsValuesAndKeepsTheRest) {
       "[estimator]\n"
       "gyro_noise_rad_s = 0.01\n"
       "max_sample_gap_s = 1        # an integer converts\n"
-      "accel_noise_standing_m_s2 = 0.3\n"
+      "accel_noise_m_s2 = 0.3\n"
       "disturbance_up_to_walking = 3.5\n"
       "redefine_heading_enter = 0.5\n"
       "mag_heading_time_constant_s = inf\n",
       "ok.toml");
   EXPECT_EQ(p.gyro_noise_rad_s, 0.01);
   EXPECT_EQ(p.max_sample_gap_s, 1.0);
-  EXPECT_EQ(p.accel_noise_standing_m_s2, 0.3);
+  EXPECT_EQ(p.accel_noise_m_s2, 0.3);
   EXPECT_EQ(p.disturbance_up_to_walking, 3.5);
   EXPECT_EQ(p.redefine_heading_enter, 0.5);
   EXPECT_TRUE(std::isinf(p.mag_heading_time_constant_s));
@@ -122,9 +122,6 @@ TEST(ParamsToml, BadHysteresisOrderIsAnError) {
 TEST(ParamsToml, ValidateEstimatorParamsChecksOrder) {
   EXPECT_NO_THROW(validateEstimatorParams(EstimatorParams{}, "defaults"));
   EstimatorParams p;
-  p.accel_noise_walking_m_s2 = 0.1;  // below standing
-  EXPECT_THROW(validateEstimatorParams(p, "x"), ConfigError);
-  p = EstimatorParams{};
   p.disturbance_down_to_walking = 50.0;
   EXPECT_THROW(validateEstimatorParams(p, "x"), ConfigError);
   p = EstimatorParams{};

@@ -37,7 +37,5 @@ class MotionLevelSelector {
   MotionLevel level_ = MotionLevel::kStanding;
 };
 
-// Gravity measurement noise (1σ, m/s²) of a level.
-double accelNoiseFor(MotionLevel level, const EstimatorParams& p);
 
 }  // namespace headingd::core

@@ -7,9 +7,9 @@
 //   → magnetometer heading observer (eq. 4.2) with the gyro-only heading restored at a
 //   disturbance's onset (eq. 4.4, heading_corrections.hpp) → heading definition (§3.3).
 #include <cstdint>
-#include <optional>
 
 #include "headingd/core/accel_disturbance.hpp"
+#include "headingd/core/gravity_residual.hpp"
 #include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/attitude_ekf.hpp"
 #include "headingd/core/estimator_params.hpp"
@@ -34,8 +34,9 @@ struct EstimatorOutput {
   double heading_rad = 0.0;
   bool heading_redefined = false;
   double head_height = 1.0;  // h(q), eq. 3.12
-  MotionLevel motion_level = MotionLevel::kStanding;
+  MotionLevel motion_level = MotionLevel::kStanding;  // activity (§3.1's levels), reported only
   double accel_disturbance = 0.0;  // d_k, (m/s²)²
+  double gravity_noise_m_s2 = 0.0;  // σ of R_k in this sample's gravity update (gravity_residual.hpp)
   Vec3 gyro_bias_rad_s = Vec3::Zero();
   bool at_rest = false;
   bool mag_used = false;
@@ -86,9 +87,8 @@ class Estimator {
   AttitudeEkf ekf_;
   AccelDisturbanceLevel disturbance_;
   GyroFrameLowPass accel_prefilter_;
+  GravityResidual gravity_residual_;
   GyroFrameLowPass mag_prefilter_;
-  std::optional<GyroFrameLowPass> residual_lp_;
-  std::optional<LowPass<double>> residual_d_;
   double mag_sample_dt_s_ = 0.0;  // time since the last field sample (a slower magnetometer)
   MotionLevelSelector motion_;
   HeadingCorrectionLog heading_corrections_;

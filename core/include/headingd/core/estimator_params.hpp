@@ -5,12 +5,12 @@
 //
 // Translating Henriksson's r = 1e7 … 1e9: the thesis sets R_k = r·I (§3.1, §6.2) but gives
 // neither the unit of its accelerometer samples nor its process noise Q, and only the ratio
-// of R to Q shapes an EKF. What carries over is (a) the d_k thresholds, which eq. 3.4
-// writes with |g| = 9.81, i.e. in (m/s²)²: up at 2 and 40, down at 1 and 20; and (b) the
-// factor 10 between consecutive levels of r. We therefore express R as the standard
-// deviation of the accelerometer's gravity measurement in m/s², set the standing level
-// from the data (our Q is the gyroscope's white noise in rad/s), and keep the thesis'
-// factor of 10 in variance (√10 in σ) between standing, walking and running.
+// of R to Q shapes an EKF. We express R as the standard deviation of the accelerometer's
+// gravity measurement in m/s² (our Q is the gyroscope's rate noise in rad/s). The thesis
+// steps R between three activity levels chosen by d_k; headingd keeps those levels (with
+// the thesis' d_k thresholds, which eq. 3.4 writes with |g| = 9.81, i.e. in (m/s²)²) as a
+// reported activity, and sets R from what is left in the low-passed measurement
+// (gravity_residual.hpp, issue 17).
 #include <cstdint>
 
 namespace headingd::core {
@@ -48,16 +48,19 @@ struct EstimatorParams {
   // --- Accelerometer pre-filter (gyro_frame_low_pass.hpp); 0 = raw samples as in the thesis ---
   double accel_prefilter_time_constant_s = 2.0;
 
-  // --- Accelerometer disturbance level d_k (Henriksson eq. 3.1, 2.17) ---
+  // --- Gravity measurement noise R_k (gravity_residual.hpp) ---
   double gravity_m_s2 = 9.81;
-  // Time constant of the low-pass filter of (|a| - g)²; the thesis uses 1 s.
+  // 1σ of a quiet accelerometer's gravity measurement (m/s²).
+  double accel_noise_m_s2 = 0.5;
+  // R_k = (σ² + κ d) I with d the spread of the low-passed measurement about its own slower
+  // low-pass (time constant below): κ.
+  double accel_residual_gain = 10.0;
+  double accel_residual_time_constant_s = 2.0;
+  // Time constant of the low-passes of squared disturbances: d above and d_k = low-pass of
+  // (|a| - g)² (Henriksson eq. 3.1; the thesis uses 1 s).
   double accel_disturbance_time_constant_s = 1.0;
 
-  // --- R_k levels with hysteresis (Henriksson §3.1, §6.2) ---
-  // Gravity measurement noise (1σ, m/s²) for the standing, walking and running levels.
-  double accel_noise_standing_m_s2 = 0.5;
-  double accel_noise_walking_m_s2 = 1.58;   // standing · √10 (thesis: r ×10)
-  double accel_noise_running_m_s2 = 5.0;    // walking · √10
+  // --- Activity levels by d_k with hysteresis (Henriksson §3.1, §6.2), reported only ---
   // d_k thresholds in (m/s²)² (thesis §6.2): step up above, step down below.
   double disturbance_up_to_walking = 2.0;
   double disturbance_up_to_running = 40.0;
