@@ -58,8 +58,10 @@ bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) c
   // the largest turn a block may make. Their Bayes factor weighs them (equal prior odds), and
   // θ is the mixture of the two: taken off in full when the vectors clearly saw a turn, not at
   // all when they saw only noise (then the gyro's mean alone is the bias, as precise as the
-  // gyro is), in between with the covariance of the mixture. The prior also settles what the
-  // vectors cannot see: the part about gravity when there is no field.
+  // gyro is), in between with the covariance of the mixture. Without a usable field the part
+  // about gravity is not seen at all: it is taken as still (a person standing sways about
+  // horizontal axes, and indoors, where the field is often disturbed, that is how the
+  // vertical bias is learned; a slow steady turn about the vertical then counts as bias).
   const double tau = p_.rest_filter_time_constant_s;
   const double prior_sigma = 0.5 * p_.rest_max_turn_rate_rad_s * block_time_s_;
   const double prior_variance = std::max(prior_sigma * prior_sigma, 1e-12);
@@ -83,12 +85,18 @@ bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) c
     projected += skew(u).transpose() * (seen[i].end - u) / seen[i].variance;
   }
   // The turning hypothesis: posterior N(θ₁, P₁).
-  const auto turning = (measured_information + Mat3::Identity() / prior_variance).ldlt();
+  Mat3 prior_information = Mat3::Identity() / prior_variance;
+  if (!mag_in_block_) {
+    const Vec3& g = accel_.start_direction;
+    prior_information += g * g.transpose() / seen[0].variance;  // as well known as gravity's direction
+  }
+  const auto turning = (measured_information + prior_information).ldlt();
   const Vec3 turned = turning.solve(projected);
   const Mat3 turned_covariance = turning.solve(Mat3::Identity());
-  // ln(p(data | still) / p(data | turning)) = ½ ln det(I + σ_p² I_m) - ½ b_mᵀ θ₁.
+  // ln(p(data | still) / p(data | turning)) = ½ ln det(I + P₀ I_m) - ½ b_mᵀ θ₁, P₀ the prior
+  // covariance of the turning hypothesis.
   const double log_bayes_still =
-      0.5 * std::log((Mat3::Identity() + prior_variance * measured_information).determinant()) -
+      0.5 * std::log((Mat3::Identity() + prior_information.inverse() * measured_information).determinant()) -
       0.5 * projected.dot(turned);
   const double p_turning = 1.0 / (1.0 + std::exp(std::clamp(log_bayes_still, -50.0, 50.0)));
   *turn_rad = p_turning * turned;

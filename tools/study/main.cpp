@@ -69,7 +69,7 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
 void writeTrace(const std::string& path, const study::Recording& r, const core::EstimatorParams& params) {
   std::ofstream out(path);
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
-         "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores\n";
+         "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
   const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
@@ -83,13 +83,13 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const auto& o = outputs[i];
     const auto e = core::eulerZyx(o.q_nb);
     const auto t = core::eulerZyx(r.truth_nb[i]);
-    std::snprintf(line, sizeof line, "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu\n",
+    std::snprintf(line, sizeof line, "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
                   o.gyro_bias_rad_s.z(), o.mag_disturbed ? 1 : 0, static_cast<unsigned long long>(still_blocks[i]),
                   r.moving[i] ? 1 : 0, e.roll_rad * kDeg, e.pitch_rad * kDeg, t.roll_rad * kDeg, t.pitch_rad * kDeg,
-                  o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]));
+                  o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2);
     out << line;
   }
 }

@@ -40,7 +40,7 @@ struct EstimatorParams {
   // sensor's white noise (BROAD's gyro: ~0.002 rad/s): it stands for everything the model
   // leaves out (residual bias, vibration), and sets how fast the accelerometer corrects
   // tilt (measured best on BROAD between 0.03 and 0.08).
-  double gyro_noise_rad_s = 0.05;
+  double gyro_noise_rad_s = 0.08;
   // Rate-proportional part (scale-factor and axis-misalignment errors of MEMS gyros, which
   // grow with the rate): σ² = gyro_noise² + (gyro_scale_noise · |ω|)².
   double gyro_scale_noise = 0.05;

@@ -11,24 +11,29 @@
 //    is what tells a person standing from one moving). A variance test, so that one noisy
 //    sample does not end a rest;
 //  - the mean rate is no more than a plausible bias plus a slow turn;
-// and when the world's vectors say how far it turned: from the block's start to its end the
+// and the world's vectors say how far it turned: from the block's start to its end the
 // low-passed directions of gravity (accelerometer) and, when the field is usable and
-// undisturbed all through, of the field (magnetometer) turn as the sensor turns, Δu = u × θ.
-// Their least-squares turn θ (gravity sees the part about horizontal axes, the field the part
-// about the vertical) must be below rest_max_turn_rate_rad_s times the block's length, and
-// together they must fit one rotation (else something accelerated the sensor or disturbed
-// the field). The block's bias is then (∫ω̄ dt - θ) / T.
+// undisturbed all through, of the field (magnetometer) move as the sensor turns, Δu = u × θ.
+// Gravity sees the part of θ about horizontal axes, the field the part about the vertical.
+// Two hypotheses are weighed by their Bayes factor: the block lay still (θ = 0), or it turned
+// a little (θ ~ N(0, σ_p²), σ_p half of rest_max_turn_rate_rad_s times the block's length).
+// The block's bias is (∫ω̄ dt - θ̂) / T with θ̂ the mixture's turn: a turn the vectors clearly
+// saw is taken off, mere noise is not (so a sensor that lies still gets the gyro's own
+// precision, not the field's noise). A block counts when θ̂ is within the turn limit and the
+// two vectors fit one rotation (else something accelerated the sensor or disturbed the field).
 //
 // Why: a slow steady turn or a hand's slow drift (1-3 deg/s) keeps the gyro and the
 // accelerometer steady; taking its mean rate as bias (what a gyro-only rest test does) leaves
-// a bias error of that rate, which the tilt filter turns into degrees of tilt. Gravity and the
-// field measure the turn itself. Nothing here compares with the current bias estimate: a
-// test against the estimate (|ω̄ - b̂| small) locks a wrong estimate in, since the true rest
-// then fails it. Without a usable field, a turn about the vertical is not seen: the block then
-// counts that part of its rate as bias. Whole blocks, so that the first moments of a motion,
-// which no test sees at once, are thrown away with the block they end; and after a motion the
-// first block starts only once the low-passes have settled from it (3 of their time
-// constants of steadiness; at start-up they begin as running means and need one).
+// a bias error of that rate, which the tilt filter turns into degrees of tilt (issue 17).
+// Gravity and the field measure the turn itself. Nothing here compares with the current bias
+// estimate: a test against the estimate (|ω̄ - b̂| small) locks a wrong estimate in, since
+// the true rest then fails it. Without a usable field a turn about the vertical is not seen
+// and is taken as none: the block counts that part of its rate as bias (a person standing
+// sways about horizontal axes; a slow steady turn about the vertical is the limitation).
+// Whole blocks, so that the first moments of a motion, which no test sees at once, are thrown
+// away with the block they end; and after a motion the first block starts only once the
+// low-passes have settled from it (3 of their time constants of steadiness; at start-up they
+// begin as running means and need one).
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/low_pass.hpp"
 #include "headingd/core/noise_floor.hpp"
