@@ -16,7 +16,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 TEST(Scenarios, DurationsAndRowCounts) {
   const std::map<std::string, double> expected = {
       {"thesis-declination", 244.0}, {"urban-walk", 600.0}, {"static-disturbed", 120.0}, {"crawl", 116.0},
-      {"run", 180.0}, {"calib-six-position", 122.0}, {"calib-rotation", 4.0}, {"calib-rotation-long", 60.0}};
+      {"run", 180.0}, {"calib-six-position", 122.0}, {"calib-rotation", 4.0}, {"calib-rotation-long", 60.0},
+      {"shake", 100.0}, {"shake-any", 100.0}, {"handheld", 100.0}, {"slow-rotation", 120.0}};
   ASSERT_EQ(sim::scenarioNames().size(), expected.size());
   for (const std::string& name : sim::scenarioNames()) {
     const sim::Scenario s = sim::makeScenario(name);

@@ -25,6 +25,13 @@ OrientationKeyframe keyframe(double t_s, const Quat& q) {
   return {t_s, e.roll_rad * kRadToDeg, e.pitch_rad * kRadToDeg, e.yaw_rad * kRadToDeg};
 }
 
+// The time of the next keyframe, step_s after t_s, but never past end_s and never leaving a
+// last move shorter than min_step_s before it (the scenario's length is fixed).
+double nextKeyframeTime(double t_s, double step_s, double end_s, double min_step_s) {
+  const double next = t_s + step_s;
+  return end_s - next < min_step_s ? end_s : next;
+}
+
 void hold(ScriptedOrientation& s, double duration_s) {
   OrientationKeyframe k = s.keyframes.back();
   k.t_s += duration_s;
@@ -88,14 +95,14 @@ Scenario handheldScenario(std::uint64_t seed) {
   script.keyframes = {keyframe(0.0, uniformAttitude(seed, kAttitude))};
   hold(script, 10.0);
   const double handling_end = 70.0;
-  while (script.keyframes.back().t_s < handling_end - 1.5) {
+  while (script.keyframes.back().t_s < handling_end) {
     OrientationKeyframe k = script.keyframes.back();
-    k.t_s += rng.uniform(0.4, 1.2);
+    k.t_s = nextKeyframeTime(k.t_s, rng.uniform(0.4, 1.2), handling_end, 0.4);
     k.roll_deg += rng.uniform(-120.0, 120.0);
     k.pitch_deg = std::clamp(k.pitch_deg + rng.uniform(-90.0, 90.0), -85.0, 85.0);
     k.yaw_deg += rng.uniform(-150.0, 150.0);
     script.keyframes.push_back(k);
-    if (rng.uniform01() < 0.3) hold(script, rng.uniform(0.1, 0.6));
+    if (rng.uniform01() < 0.3 && k.t_s < handling_end - 1.0) hold(script, rng.uniform(0.1, 0.6));
   }
   // The hand's own translations while it turns the sensor.
   for (int i = 0; i < 3; ++i) {
@@ -122,14 +129,15 @@ Scenario slowRotationScenario(std::uint64_t seed) {
   script.hand_drift_deg = 0.5;
   script.keyframes = {{0.0, rng.uniform(-20.0, 20.0), rng.uniform(-20.0, 20.0), rng.uniform(-180.0, 180.0)}};
   hold(script, 10.0);
-  while (script.keyframes.back().t_s < 100.0 - 3.0) {
+  const double turning_end = 100.0;
+  while (script.keyframes.back().t_s < turning_end) {
     OrientationKeyframe k = script.keyframes.back();
-    k.t_s += std::min(rng.uniform(3.0, 8.0), 100.0 - k.t_s);
+    k.t_s = nextKeyframeTime(k.t_s, rng.uniform(3.0, 8.0), turning_end, 3.0);
     k.roll_deg = rng.uniform(-60.0, 60.0);
     k.pitch_deg = rng.uniform(-60.0, 60.0);
     k.yaw_deg += rng.uniform(-120.0, 120.0);
     script.keyframes.push_back(k);
-    if (rng.uniform01() < 0.2) hold(script, rng.uniform(0.5, 2.0));
+    if (rng.uniform01() < 0.2 && k.t_s < turning_end - 3.0) hold(script, rng.uniform(0.5, 2.0));
   }
   hold(script, 20.0);
   return scriptedScenario("slow-rotation",
