@@ -10,6 +10,11 @@ namespace {
 
 // Time constants of the low-passes that a steady stretch must last before a block starts.
 constexpr double kSettleTimeConstants = 3.0;
+// The field may be missing (flagged as disturbed) for this long at a stretch, and for this
+// share of a block in all, and still count in it: single false alarms of a noisy
+// magnetometer's disturbance tests must not take the field's view of the vertical away.
+constexpr double kMaxFieldGapS = 0.1;
+constexpr double kMaxFieldGapShare = 0.2;
 
 // [u]×: [u]× v = u × v.
 Mat3 skew(const Vec3& u) {
@@ -115,6 +120,7 @@ void RestDetector::startBlock(bool with_mag) {
   block_time_s_ = 0.0;
   block_rotation_.setZero();
   accel_.markStart();
+  block_field_gaps_s_ = 0.0;
   mag_in_block_ = with_mag;
   if (with_mag) mag_.markStart();
 }
@@ -125,11 +131,17 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
   accel_floor_.update(accel_rms, dt_s);
   if (mag_uT != nullptr) {
     mag_floor_.update(mag_.update(*mag_uT, dt_s), dt_s);
+    field_gap_s_ = 0.0;
   } else {
-    // No usable field: its mean starts afresh when one comes back (an old mean would look
-    // like a turn), and the current block goes on without it.
-    mag_ = SteadyVector(p_.rest_filter_time_constant_s);
-    mag_in_block_ = false;
+    // Single samples flagged as disturbed (a noisy magnetometer's false alarms) are skipped.
+    // A longer absence: the field's mean starts afresh when it comes back (an old mean
+    // would look like a turn), and the current block goes on without it.
+    field_gap_s_ += dt_s;
+    block_field_gaps_s_ += dt_s;
+    if (field_gap_s_ > kMaxFieldGapS || block_field_gaps_s_ > kMaxFieldGapShare * p_.rest_min_duration_s) {
+      mag_ = SteadyVector(p_.rest_filter_time_constant_s);
+      mag_in_block_ = false;
+    }
   }
   gyro_floor_.update(gyro_rms, dt_s);
   const double gyro_bound =

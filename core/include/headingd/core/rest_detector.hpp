@@ -99,6 +99,8 @@ class RestDetector {
   double settle_time_constants_ = 1.0;
   bool in_block_ = false;
   bool mag_in_block_ = false;  // the field was usable when the block began and since
+  double field_gap_s_ = 0.0;         // how long the field has been missing, at a stretch
+  double block_field_gaps_s_ = 0.0;  // and in all, this block
   double block_time_s_ = 0.0;
   Vec3 block_rotation_ = Vec3::Zero();  // ∫ ω̄ dt over the block
   RestBlock block_;
