@@ -48,9 +48,11 @@ double RestDetector::SteadyVector::directionSigma(const NoiseFloor& floor, doubl
   const double norm = mean.norm();
   if (norm <= 0.0) return 1.0;
   // The sensor's own noise: the quietest RMS deviation of the last minute (a turn or a
-  // tremor raises the deviation, and is what the block measures, not noise). A floor of
-  // 1e-5 rad keeps the weights finite for a noiseless (simulated) sensor.
-  const double rms = std::min(std::sqrt(deviation2), floor.value());
+  // tremor raises the deviation, and is what the block measures, not noise); the current
+  // deviation until the floor is known. A floor of 1e-5 rad keeps the weights finite for a
+  // noiseless (simulated) sensor.
+  const double known_floor = floor.value();
+  const double rms = std::isfinite(known_floor) ? known_floor : std::sqrt(deviation2);
   return std::max(1e-5, rms * std::sqrt(dt_s / (2.0 * time_constant_s)) / norm);
 }
 
@@ -130,7 +132,9 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
   const double accel_rms = accel_.update(accel_m_s2, dt_s);
   accel_floor_.update(accel_rms, dt_s);
   if (mag_uT != nullptr) {
-    mag_floor_.update(mag_.update(*mag_uT, dt_s), dt_s);
+    const double mag_rms = mag_.update(*mag_uT, dt_s);
+    // A mean that starts afresh has no deviation yet: the floor learns from settled ones only.
+    if (mag_.elapsed_s >= kSettleTimeConstants * p_.rest_filter_time_constant_s) mag_floor_.update(mag_rms, dt_s);
     field_gap_s_ = 0.0;
   } else {
     // Single samples flagged as disturbed (a noisy magnetometer's false alarms) are skipped.
