@@ -89,7 +89,7 @@ ShakeSpec drawShakeAnyDirection(std::uint64_t seed) {
 Scenario handheldScenario(std::uint64_t seed) {
   Rng rng = Rng::stream(seed, kHandheld);
   ScriptedOrientation script;
-  script.tremor_deg = 0.1;
+  script.tremor_deg = 0.03;
   script.hand_drift_deg = 2.0;
   script.lever_arm_body_m = 0.15 * rng.unitVector();
   script.keyframes = {keyframe(0.0, uniformAttitude(seed, kAttitude))};

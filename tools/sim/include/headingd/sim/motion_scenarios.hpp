@@ -22,7 +22,7 @@ struct ShakeSpec {
   double still_before_s = 10.0;
   double shake_s = 60.0;
   double still_after_s = 30.0;
-  double tremor_deg = 0.1;      // 6-12 Hz (see handheldScenario)
+  double tremor_deg = 0.1;      // 6-12 Hz, about the sensor itself (see handheldScenario)
   double hand_drift_deg = 2.0;  // 0.1-0.5 Hz
 };
 
@@ -33,8 +33,9 @@ ShakeSpec drawShakeAlongSensorAxis(std::uint64_t seed);
 // "shake-any": any attitude and direction, 0.5-10 Hz, 0.5-8 g.
 ShakeSpec drawShakeAnyDirection(std::uint64_t seed);
 
-// Physiological tremor of a hand holding an object is a fraction of a m/s² at 6-12 Hz: 0.1 deg
-// of rotation at 9 Hz is 0.28 rad/s² of angular acceleration, 0.4 m/s² at 15 cm from the wrist.
+// Physiological tremor of a hand holding an object is a tenth or two of a m/s² at 6-12 Hz:
+// 0.03 deg of rotation at 9 Hz is 1.7 rad/s² of angular acceleration, 0.25 m/s² at 15 cm from
+// the wrist. (The shaken sensor turns about itself: its 0.1 deg of tremor only moves the gyro.)
 //
 // "handheld": 10 s still, 60 s of vigorous handling (a new attitude every 0.4-1.2 s, rates up
 // to ~600 deg/s, the hand's translations at 0.5-3 Hz and 0.5-2 g, 15 cm lever arm), 30 s still.
