@@ -56,7 +56,7 @@ TEST(Gyro, RatesArePlausibleForAPerson) {
 }
 
 TEST(Accel, AtRestReadsGravityUpInSensorAxes) {
-  const sim::SimResult& r = run(config("static-disturbed", 3, sim::ImuGrade::kIdeal));
+  const sim::SimResult& r = run(pointConfig("static-disturbed", 3, sim::ImuGrade::kIdeal));
   for (std::size_t k = 0; k < r.imu.size(); k += 7) {
     const sim::ImuRow& row = r.imu[k];
     ASSERT_FALSE(row.moving);
@@ -79,7 +79,7 @@ TEST(Accel, WhileMovingItIsTheSecondDerivativeOfPosition) {
   // Rotate the ideal specific force back to NED, add gravity, integrate twice: the path
   // reproduces the true positions (the recurrence p+ = 2p - p- + a dt² is what the
   // trajectory's accelerations are the second differences of).
-  const sim::SimResult& r = run(config("urban-walk", 3, sim::ImuGrade::kIdeal, 50.0));
+  const sim::SimResult& r = run(pointConfig("urban-walk", 3, sim::ImuGrade::kIdeal, 50.0));
   const double dt = 1.0 / r.config.imu_rate_hz;
   const auto& s = r.trajectory.states;
   for (const double start_s : {15.0, 75.0, 240.0}) {  // walking, running, walking
@@ -98,15 +98,29 @@ TEST(Accel, WhileMovingItIsTheSecondDerivativeOfPosition) {
   }
 }
 
+TEST(Sampling, IntervalMeanVectorsAreTheMeanOfThePointValuesAtTheIntervalsEnds) {
+  // The default sensor reports the mean over (t_{k-1}, t_k] (trapezoid rule), as its gyro's
+  // rate covers the same interval; the point-sampled one the value at t_k.
+  const sim::SimResult& mean = run(config("urban-walk", 3, sim::ImuGrade::kIdeal, 50.0));
+  const sim::SimResult& point = run(pointConfig("urban-walk", 3, sim::ImuGrade::kIdeal, 50.0));
+  ASSERT_EQ(mean.imu.size(), point.imu.size());
+  EXPECT_EQ(mean.imu[0].accel_m_s2, point.imu[0].accel_m_s2);  // no interval before the first row
+  for (std::size_t k = 1; k < mean.imu.size(); k += 17) {
+    EXPECT_LT((mean.imu[k].accel_m_s2 - 0.5 * (point.imu[k - 1].accel_m_s2 + point.imu[k].accel_m_s2)).norm(), 1e-9);
+    EXPECT_LT((mean.imu[k].mag_uT - 0.5 * (point.imu[k - 1].mag_uT + point.imu[k].mag_uT)).norm(), 1e-9);
+    EXPECT_EQ(mean.imu[k].gyro_rad_s, point.imu[k].gyro_rad_s);
+  }
+}
+
 TEST(Mag, FieldStrengthIsTheWmmTotalIntensityOutdoors) {
-  const sim::SimResult& r = run(config("thesis-declination", 3, sim::ImuGrade::kIdeal));
+  const sim::SimResult& r = run(pointConfig("thesis-declination", 3, sim::ImuGrade::kIdeal));
   const double f_uT = r.wmm.f_nT / 1000.0;
   EXPECT_NEAR(f_uT, 51.9, 1.0);  // Stockholm, 2026
   for (std::size_t k = 0; k < r.imu.size(); k += 13) EXPECT_NEAR(r.imu[k].mag_uT.norm(), f_uT, 1e-9);
 }
 
 TEST(Mag, AnomalyTurnsTheFieldEastAboutDown) {
-  sim::SimConfig c = config("thesis-declination", 3, sim::ImuGrade::kIdeal, 20.0);
+  sim::SimConfig c = pointConfig("thesis-declination", 3, sim::ImuGrade::kIdeal, 20.0);
   c.decl_anomaly_deg = 2.5;
   const sim::SimResult& r = run(c);
   EXPECT_NEAR(r.declination_deg, r.wmm.declination_deg + 2.5, 1e-12);
@@ -119,7 +133,7 @@ TEST(Mag, AnomalyTurnsTheFieldEastAboutDown) {
 }
 
 TEST(Mag, StaticDisturbedAddsTheConstantOffset) {
-  const sim::SimResult& r = run(config("static-disturbed", 3, sim::ImuGrade::kIdeal, 20.0));
+  const sim::SimResult& r = run(pointConfig("static-disturbed", 3, sim::ImuGrade::kIdeal, 20.0));
   const Vec3 earth = core::magneticFieldNed_uT(r.wmm);
   for (std::size_t k = 0; k < r.imu.size(); k += 31) {
     const Vec3 m_ned = r.imu[k].q_ns * r.imu[k].mag_uT;

@@ -36,12 +36,23 @@ inline sim::SimConfig config(const std::string& scenario, std::uint64_t seed = 1
   return c;
 }
 
+// The same with point-sampled accelerometer and magnetometer: the sensor's reading at t_k is
+// the true vector at t_k, for the tests of the relations between the signals and the truth.
+inline sim::SimConfig pointConfig(const std::string& scenario, std::uint64_t seed = 1,
+                                  sim::ImuGrade grade = sim::ImuGrade::kConsumer, double rate_hz = 100.0) {
+  sim::SimConfig c = config(scenario, seed, grade, rate_hz);
+  c.vector_sampling = sim::VectorSampling::kPoint;
+  return c;
+}
+
 // Runs are cached by everything that distinguishes the configurations used here.
 inline const sim::SimResult& run(const sim::SimConfig& c) {
-  using Key = std::tuple<std::string, std::uint64_t, int, double, double, double, double, double, double, int, int, int>;
+  using Key =
+      std::tuple<std::string, std::uint64_t, int, double, double, double, double, double, double, int, int, int, int>;
   static std::map<Key, sim::SimResult> cache;
   const Key key{c.scenario, c.seed, static_cast<int>(c.imu_grade), c.imu_rate_hz, c.gps_rate_hz, c.mount_yaw_deg,
-                c.decl_anomaly_deg, c.origin.latitude_deg, c.origin.longitude_deg, c.year, c.month, c.day};
+                c.decl_anomaly_deg, c.origin.latitude_deg, c.origin.longitude_deg, c.year, c.month, c.day,
+                static_cast<int>(c.vector_sampling)};
   auto it = cache.find(key);
   if (it == cache.end()) it = cache.emplace(key, sim::simulate(c, shippedWmm())).first;
   return it->second;

@@ -104,8 +104,14 @@ int main(int argc, char** argv) {
   app.add_option("--rate-hz", c.imu_rate_hz, "IMU sample rate, 10..1000 Hz")->capture_default_str();
   app.add_option("--gps-rate-hz", c.gps_rate_hz, "GPS epochs per second: 1, 2, 4, 5 or 10")->capture_default_str();
   app.add_option("--imu-grade", grade,
-                 "IMU errors: consumer (calibrated consumer MEMS), uncalibrated (plus Kok & Schon's raw "
+                 "IMU errors: consumer (calibrated consumer MEMS, a 2014 smartphone's white noise), mems (the "
+                 "same with current datasheets' white noise), uncalibrated (consumer plus Kok & Schon's raw "
                  "magnetometer distortion), ideal (none)")
+      ->capture_default_str();
+  std::string sampling = "interval";
+  app.add_option("--vector-sampling", sampling,
+                 "accelerometer and magnetometer samples: interval (the mean over the sample interval, as the "
+                 "gyro's rate) or point (the value at the sample time)")
       ->capture_default_str();
   app.add_option("--talker", c.talker, "NMEA talker id: GP or GN")->capture_default_str();
   app.add_option("--cof", cof, "WMM coefficient file (NOAA COF)")->capture_default_str();
@@ -120,6 +126,7 @@ int main(int argc, char** argv) {
   try {
     parseDate(date, c);
     c.imu_grade = sim::parseImuGrade(grade);
+    c.vector_sampling = sim::parseVectorSampling(sampling);
     (void)sim::makeScenario(c.scenario);
     sim::validate(c);
   } catch (const std::exception& e) {

@@ -126,8 +126,9 @@ void writeSensorErrors(std::ostream& out, const SimResult& r) {
   std::string s;
   append(s, "# headingd-sim: the IMU errors drawn for this run. Each triad reads\n");
   append(s, "#   y = D x + o + b(t) + n   (sensor axes; b drifts from 0, n white with the given sigma)\n");
-  append(s, "[run]\nscenario = \"%s\"\nseed = %llu\nimu_grade = \"%s\"\n", c.scenario.c_str(),
-         static_cast<unsigned long long>(c.seed), imuGradeName(c.imu_grade));
+  append(s, "[run]\nscenario = \"%s\"\nseed = %llu\nimu_grade = \"%s\"\nvector_sampling = \"%s\"\n",
+         c.scenario.c_str(), static_cast<unsigned long long>(c.seed), imuGradeName(c.imu_grade),
+         vectorSamplingName(c.vector_sampling));
   append(s, "latitude_deg = %.9g\nlongitude_deg = %.9g\ndate = \"%04d-%02d-%02d\"\n", c.origin.latitude_deg,
          c.origin.longitude_deg, c.year, c.month, c.day);
   append(s, "imu_rate_hz = %.9g\ngps_rate_hz = %.9g\nmount_yaw_deg = %.9g\ndecl_anomaly_deg = %.9g\n",

@@ -23,6 +23,16 @@ void require(bool ok, const std::string& what) {
 
 }  // namespace
 
+const char* vectorSamplingName(VectorSampling v) {
+  return v == VectorSampling::kIntervalMean ? "interval" : "point";
+}
+
+VectorSampling parseVectorSampling(std::string_view name) {
+  if (name == "interval") return VectorSampling::kIntervalMean;
+  if (name == "point") return VectorSampling::kPoint;
+  throw std::invalid_argument("unknown vector sampling '" + std::string(name) + "' (interval, point)");
+}
+
 void validate(const SimConfig& c) {
   require(std::isfinite(c.origin.latitude_deg) && std::abs(c.origin.latitude_deg) <= 89.0,
           "--lat must be within -89..89 degrees");
@@ -69,6 +79,7 @@ SimResult simulate(const SimConfig& config, const core::WorldMagneticModel& wmm)
   r.imu.reserve(states.size());
   r.field_ned_uT.reserve(states.size());
   r.disturbance_ned_uT.reserve(states.size());
+  Vec3 accel_previous = Vec3::Zero(), mag_previous = Vec3::Zero();  // point values at t_{k-1}
   for (const TruthState& s : states) {
     const Quat q_ns = (s.q_nb * r.q_bs).normalized();
     const Vec3 disturbance = field.disturbanceNed_uT(s.t_s, s.position_ned_m);
@@ -76,8 +87,15 @@ SimResult simulate(const SimConfig& config, const core::WorldMagneticModel& wmm)
     // Row k's rate covers (t_{k-1}, t_k]: q_k = q_{k-1} ⊗ exp(½ ω_k Δt), the way the
     // estimator integrates a sample over the interval that ends at it.
     const Vec3 gyro_true = rateBetween(q_ns_previous, q_ns, dt);
-    const Vec3 accel_true = q_ns.conjugate() * (s.accel_ned_mps2 - gravity_ned);  // f_s = R_nsᵀ (a_n - g_n)
-    const Vec3 mag_true = q_ns.conjugate() * field_ned;
+    const Vec3 accel_point = q_ns.conjugate() * (s.accel_ned_mps2 - gravity_ned);  // f_s = R_nsᵀ (a_n - g_n)
+    const Vec3 mag_point = q_ns.conjugate() * field_ned;
+    // An interval-mean sensor reports the mean over (t_{k-1}, t_k] (trapezoid rule, in its own
+    // turning axes); the first row has no interval before it.
+    const bool mean = config.vector_sampling == VectorSampling::kIntervalMean && !r.imu.empty();
+    const Vec3 accel_true = mean ? Vec3(0.5 * (accel_previous + accel_point)) : accel_point;
+    const Vec3 mag_true = mean ? Vec3(0.5 * (mag_previous + mag_point)) : mag_point;
+    accel_previous = accel_point;
+    mag_previous = mag_point;
     ImuRow row;
     row.t_s = s.t_s;
     row.gyro_rad_s = gyro.measure(gyro_true);

@@ -8,6 +8,7 @@
 // UTC(sentence) - (date 12:00:00 UTC).
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "headingd/core/quaternion.hpp"
@@ -22,6 +23,14 @@ namespace headingd::sim {
 
 inline constexpr double kStartTimeOfDayS = 12.0 * 3600.0;  // t = 0 is 12:00:00 UTC
 
+// How the accelerometer and magnetometer sample: the mean over the interval that ends at the
+// sample time, as the gyro's rate is (an IMU that integrates and dumps, or filters over its
+// sample period; BROAD's real IMU reads that way), or the value at the sample time.
+enum class VectorSampling { kIntervalMean, kPoint };
+const char* vectorSamplingName(VectorSampling v);
+// Throws std::invalid_argument for an unknown name.
+VectorSampling parseVectorSampling(std::string_view name);
+
 struct SimConfig {
   std::string scenario = "thesis-declination";
   std::uint64_t seed = 1;
@@ -34,6 +43,7 @@ struct SimConfig {
   double imu_rate_hz = 100.0;
   double gps_rate_hz = 1.0;
   ImuGrade imu_grade = ImuGrade::kConsumer;
+  VectorSampling vector_sampling = VectorSampling::kIntervalMean;
   std::string talker = "GP";
 };
 
