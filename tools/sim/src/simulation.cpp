@@ -52,10 +52,14 @@ void validate(const SimConfig& c) {
 }
 
 SimResult simulate(const SimConfig& config, const core::WorldMagneticModel& wmm) {
+  return simulate(config, makeScenario(config.scenario, config.seed), wmm);
+}
+
+SimResult simulate(const SimConfig& config, const Scenario& scenario, const core::WorldMagneticModel& wmm) {
   validate(config);
   SimResult r;
   r.config = config;
-  r.scenario = makeScenario(config.scenario, config.seed);
+  r.scenario = scenario;
   r.wmm = wmm.field({config.origin.latitude_deg, config.origin.longitude_deg, config.origin.height_m / 1000.0},
                     core::decimalYear(config.year, config.month, config.day));
   r.wmm_model_name = wmm.modelName();

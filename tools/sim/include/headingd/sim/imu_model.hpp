@@ -25,9 +25,9 @@ struct TriadErrorParams {
 };
 
 // ideal: no errors at all. consumer: a calibrated consumer-grade MEMS IMU (the default), with
-// the white noise of a 2014 smartphone (MAGYQ's tables; its gyro is ~15 times noisier than a
-// current part). mems: consumer, with the white noise of current consumer 9-axis parts'
-// datasheets. uncalibrated: consumer, but the magnetometer distorted as in Kok & Schön's
+// the noise and bias instability of a 2014 smartphone (MAGYQ's tables; its gyro is ~15 times
+// noisier than a current part). mems: consumer, with the white noise of current consumer
+// 9-axis parts' datasheets and their gyros' bias instability. uncalibrated: consumer, but the magnetometer distorted as in Kok & Schön's
 // Monte Carlo study (soft and hard iron of a raw sensor), for the calibration tools.
 enum class ImuGrade { kIdeal, kConsumer, kUncalibrated, kMems };
 const char* imuGradeName(ImuGrade g);

@@ -83,5 +83,8 @@ struct SimResult {
 inline constexpr double kGravity_m_s2 = 9.81;  // g_n = (0, 0, +9.81) in NED
 
 SimResult simulate(const SimConfig& config, const core::WorldMagneticModel& wmm);
+// The same for a scenario made elsewhere (tests that set a motion's parameters themselves);
+// config.scenario only names it.
+SimResult simulate(const SimConfig& config, const Scenario& scenario, const core::WorldMagneticModel& wmm);
 
 }  // namespace headingd::sim
