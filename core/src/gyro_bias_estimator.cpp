@@ -8,6 +8,9 @@ namespace headingd::core {
 
 namespace {
 
+// The in-motion measurement is made from the turns of this much time.
+constexpr double kMotionWindowS = 0.1;
+
 // Innovations are clipped to the largest plausible bias: one wild sample (a knock, the
 // first moments of a motion) moves the estimate at most that far.
 template <typename V>
@@ -51,20 +54,35 @@ const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_
   return bias_;
 }
 
-void GyroBiasEstimator::followAttitude(const Quat& q_nb, double dt_s) {
-  horizontal_rows_.update(q_nb.toRotationMatrix().topRows<2>(), dt_s);
+void GyroBiasEstimator::addTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s,
+                                          bool measures_bias) {
+  window_s_ += dt_s;
+  if (measures_bias) {
+    measuring_s_ += dt_s;
+    window_turn_rad_ += turn_rad;
+  }
+  if (window_s_ < kMotionWindowS) return;
+  // The horizontal rows of R(q), low-passed as the turns are (their lag is the gravity
+  // filters'): e_xᵀ R and e_yᵀ R written out.
+  const double w = q_nb.w(), x = q_nb.x(), y = q_nb.y(), z = q_nb.z();
+  Eigen::Matrix<double, 2, 3> rows;
+  rows << 1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y),  //
+      2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x);
+  horizontal_rows_.update(rows, window_s_);
+  if (measuring_s_ >= window_s_ && p_.bias_motion_time_constant_s > 0.0) updateFromWindow();
+  window_s_ = measuring_s_ = 0.0;
+  window_turn_rad_.setZero();
 }
 
-void GyroBiasEstimator::updateFromTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s) {
-  followAttitude(q_nb, dt_s);
-  if (p_.bias_motion_time_constant_s <= 0.0 || dt_s <= 0.0) return;
+void GyroBiasEstimator::updateFromWindow() {
+  // Over a window of length T the turns sum to -R̄_h β T: y = -Σturn / T, H = R̄_h, W = N / T.
   const Eigen::Matrix<double, 2, 3>& H = horizontal_rows_.value();
   const double tau_walk = p_.bias_motion_time_constant_s * p_.bias_walk_rad_s_per_sqrt_s;
   const Eigen::Matrix<double, 3, 2> PHt = P_ * H.transpose();
   Eigen::Matrix2d S = H * PHt;
-  S.diagonal().array() += tau_walk * tau_walk / dt_s;
+  S.diagonal().array() += tau_walk * tau_walk / window_s_;
   const Eigen::Matrix<double, 3, 2> K = PHt * S.inverse();
-  const Eigen::Vector2d innovation = -turn_rad / dt_s;  // = H (b - b̂)
+  const Eigen::Vector2d innovation = -window_turn_rad_ / window_s_;  // = H (b - b̂)
   bias_ += K * clipped(innovation, p_.bias_max_rad_s);
   P_ -= K * PHt.transpose();
   P_ = 0.5 * (P_ + P_.transpose());

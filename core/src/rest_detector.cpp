@@ -38,7 +38,9 @@ RestDetector::RestDetector(const EstimatorParams& p)
 
 double RestDetector::SteadyVector::update(const Vec3& v, double dt_s) {
   elapsed_s += dt_s;
-  const double weight = std::max(dt_s / elapsed_s, 1.0 - alpha(dt_s));  // eq. 2.13 after the start
+  const double low_pass_weight = 1.0 - alpha(dt_s);  // eq. 2.13
+  // A running mean (weight dt/t) until that weight falls below the low-pass's.
+  const double weight = elapsed_s * low_pass_weight < dt_s ? dt_s / elapsed_s : low_pass_weight;
   mean += weight * (v - mean);
   deviation2 += weight * ((v - mean).squaredNorm() - deviation2);
   return std::sqrt(deviation2);

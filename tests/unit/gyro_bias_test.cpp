@@ -176,7 +176,7 @@ TEST(GyroBiasEstimator, TheGravityUpdatesTurnsMeasureTheHorizontalBias) {
   const Quat q_nb = Quat::Identity();
   for (int i = 0; i < 6000; ++i) {  // 60 s
     const Vec3 drift_ned = q_nb * (beta - est.bias());
-    est.updateFromTiltCorrection(-drift_ned.head<2>() * kDt, q_nb, kDt);
+    est.addTiltCorrection(-drift_ned.head<2>() * kDt, q_nb, kDt, true);
   }
   EXPECT_NEAR(est.bias().x(), 0.02, 1e-3);
   EXPECT_NEAR(est.bias().y(), 0.0, 1e-9);
@@ -186,7 +186,7 @@ TEST(GyroBiasEstimator, TheGravityUpdatesTurnsMeasureTheHorizontalBias) {
 TEST(GyroBiasEstimator, StaysWithinTheClamp) {
   const EstimatorParams p;
   GyroBiasEstimator est(p);
-  for (int i = 0; i < 6000; ++i) est.updateFromTiltCorrection(Eigen::Vector2d(-0.01, 0.01), Quat::Identity(), kDt);
+  for (int i = 0; i < 6000; ++i) est.addTiltCorrection(Eigen::Vector2d(-0.01, 0.01), Quat::Identity(), kDt, true);
   EXPECT_LE(est.bias().norm(), p.bias_max_rad_s + 1e-12);
 }
 

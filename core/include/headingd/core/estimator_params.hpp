@@ -77,8 +77,11 @@ struct EstimatorParams {
   double redefine_heading_leave = 0.7;
 
   // --- Magnetometer heading observer (Henriksson eq. 4.2) ---
-  // K = 1 - exp(-dt/τ): the magnetometer pulls the heading with this time constant.
-  double mag_heading_time_constant_s = 10.0;
+  // K = 1 - exp(-dt/τ): the magnetometer pulls the heading with this time constant. Chosen on
+  // the 14 shared BROAD trials (issue 17; 6 / 10 / 15 / 20 s: 2.11 / 1.92 / 1.86 / 1.90 deg
+  // total, the same order at 100 and 50 Hz); the simulated urban walk agrees (10 s 6.9 deg,
+  // 15 s 6.0 deg true-heading RMSE). The 10 s used before was chosen with held-out trials.
+  double mag_heading_time_constant_s = 15.0;
   // The horizontal field must be at least this share of the total field for a heading.
   double mag_min_horizontal_fraction = 0.1;
   // The field is low-passed in a gyro-integrated frame (gyro_frame_low_pass.hpp) with this

@@ -40,15 +40,14 @@ class GyroBiasEstimator {
   // Returns the bias to take off this sample's rate.
   const Vec3& update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s);
 
-  // After the gravity update of the same sample, unless the sensor is at rest: that update
-  // turned the attitude q_nb by turn_rad about NED north and east. (The same weight at every
-  // R level: a more disturbed accelerometer gets a smaller gain in the EKF, so the turns it
-  // causes are no noisier.)
-  void updateFromTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s);
-
-  // The horizontal rows of R(q_nb), low-passed, without a measurement (samples where the
-  // correction is not used must still move the low-pass).
-  void followAttitude(const Quat& q_nb, double dt_s);
+  // After the gravity update of each sample: that update turned the attitude q_nb by turn_rad
+  // about NED north and east. `measures_bias`: the turn is a measurement of the bias (the
+  // tilt has settled from its start, the sensor is not at rest). The turns are summed over
+  // windows of 0.1 s, and a window whose every sample measures makes one update: the same
+  // information as per sample, a tenth of the cost or less. (The same weight whatever the
+  // accelerometer's disturbance: a more disturbed accelerometer gets a smaller gain in the
+  // EKF, so the turns it causes are no noisier.)
+  void addTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s, bool measures_bias);
 
   const Vec3& bias() const { return bias_; }
   bool atRest() const { return rest_.atRest(); }
@@ -66,7 +65,12 @@ class GyroBiasEstimator {
   Vec3 bias_ = Vec3::Zero();
   Mat3 P_;
   double initial_variance_;
-  LowPass<Eigen::Matrix<double, 2, 3>> horizontal_rows_;  // R̄_h
+  void updateFromWindow();
+
+  LowPass<Eigen::Matrix<double, 2, 3>> horizontal_rows_;  // R̄_h, updated once a window
+  double window_s_ = 0.0;
+  double measuring_s_ = 0.0;  // of the window, the time whose turns measure the bias
+  Eigen::Vector2d window_turn_rad_ = Eigen::Vector2d::Zero();
   double rest_seconds_ = 0.0;
   std::uint64_t still_blocks_ = 0;
 };
