@@ -45,14 +45,7 @@ inline const sim::SimResult& simulated(const std::string& scenario, std::uint64_
 inline std::vector<core::ImuSample> samplesOf(const sim::SimResult& r) {
   std::vector<core::ImuSample> out;
   out.reserve(r.imu.size());
-  for (const sim::ImuRow& row : r.imu) {
-    core::ImuSample s;
-    s.t_ns = static_cast<std::int64_t>(std::llround(row.t_s * 1e9));
-    s.gyro_rad_s = row.gyro_rad_s;
-    s.accel_m_s2 = row.accel_m_s2;
-    s.mag_uT = row.mag_uT;
-    out.push_back(s);
-  }
+  for (const sim::ImuRow& row : r.imu) out.push_back(sim::imuSample(row));
   return out;
 }
 

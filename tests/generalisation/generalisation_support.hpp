@@ -27,24 +27,15 @@ inline const core::WorldMagneticModel& wmm() {
   return model;
 }
 
-inline sim::SimConfig simConfig(const std::string& scenario, std::uint64_t seed, sim::ImuGrade grade, double rate_hz) {
-  sim::SimConfig c;
-  c.scenario = scenario;
-  c.seed = seed;
-  c.imu_grade = grade;
-  c.imu_rate_hz = rate_hz;
-  return c;
-}
-
 inline study::Recording simulated(const std::string& scenario, std::uint64_t seed, sim::ImuGrade grade,
                                   double rate_hz = 100.0) {
-  return study::fromSimulation(sim::simulate(simConfig(scenario, seed, grade, rate_hz), wmm()),
+  return study::fromSimulation(sim::simulate(sim::simConfig(scenario, seed, grade, rate_hz), wmm()),
                                scenario + " seed " + std::to_string(seed));
 }
 
 inline study::Recording simulated(const sim::Scenario& scenario, std::uint64_t seed, sim::ImuGrade grade,
                                   double rate_hz = 100.0) {
-  return study::fromSimulation(sim::simulate(simConfig(scenario.name, seed, grade, rate_hz), scenario, wmm()),
+  return study::fromSimulation(sim::simulate(sim::simConfig(scenario.name, seed, grade, rate_hz), scenario, wmm()),
                                scenario.name + " seed " + std::to_string(seed));
 }
 

@@ -28,12 +28,7 @@ inline const core::WorldMagneticModel& shippedWmm() {
 
 inline sim::SimConfig config(const std::string& scenario, std::uint64_t seed = 1,
                              sim::ImuGrade grade = sim::ImuGrade::kConsumer, double rate_hz = 100.0) {
-  sim::SimConfig c;
-  c.scenario = scenario;
-  c.seed = seed;
-  c.imu_grade = grade;
-  c.imu_rate_hz = rate_hz;
-  return c;
+  return sim::simConfig(scenario, seed, grade, rate_hz);
 }
 
 // The same with point-sampled accelerometer and magnetometer: the sensor's reading at t_k is

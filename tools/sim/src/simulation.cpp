@@ -33,6 +33,24 @@ VectorSampling parseVectorSampling(std::string_view name) {
   throw std::invalid_argument("unknown vector sampling '" + std::string(name) + "' (interval, point)");
 }
 
+SimConfig simConfig(std::string scenario, std::uint64_t seed, ImuGrade grade, double imu_rate_hz) {
+  SimConfig c;
+  c.scenario = std::move(scenario);
+  c.seed = seed;
+  c.imu_grade = grade;
+  c.imu_rate_hz = imu_rate_hz;
+  return c;
+}
+
+core::ImuSample imuSample(const ImuRow& row) {
+  core::ImuSample s;
+  s.t_ns = static_cast<std::int64_t>(std::llround(row.t_s * 1e9));
+  s.gyro_rad_s = row.gyro_rad_s;
+  s.accel_m_s2 = row.accel_m_s2;
+  s.mag_uT = row.mag_uT;
+  return s;
+}
+
 void validate(const SimConfig& c) {
   require(std::isfinite(c.origin.latitude_deg) && std::abs(c.origin.latitude_deg) <= 89.0,
           "--lat must be within -89..89 degrees");

@@ -40,12 +40,7 @@ Recording fromSimulation(const sim::SimResult& result, std::string name) {
   r.rate_hz = result.config.imu_rate_hz;
   const core::Quat true_to_magnetic = core::headingRotation(-result.declination_deg * std::numbers::pi / 180.0);
   for (const sim::ImuRow& row : result.imu) {
-    core::ImuSample s;
-    s.t_ns = static_cast<std::int64_t>(std::llround(row.t_s * 1e9));
-    s.gyro_rad_s = row.gyro_rad_s;
-    s.accel_m_s2 = row.accel_m_s2;
-    s.mag_uT = row.mag_uT;
-    r.samples.push_back(s);
+    r.samples.push_back(sim::imuSample(row));
     r.truth_nb.push_back((true_to_magnetic * row.q_ns).normalized());
     r.moving.push_back(row.moving);
   }

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "headingd/core/imu_sample.hpp"
 #include "headingd/core/quaternion.hpp"
 #include "headingd/core/wmm.hpp"
 #include "headingd/sim/gps_model.hpp"
@@ -50,6 +51,9 @@ struct SimConfig {
 // Throws std::invalid_argument naming the field when a value is out of range.
 void validate(const SimConfig& config);
 
+// A configuration with everything else at its default.
+SimConfig simConfig(std::string scenario, std::uint64_t seed, ImuGrade grade, double imu_rate_hz);
+
 struct ImuRow {
   double t_s = 0.0;
   core::Vec3 gyro_rad_s = core::Vec3::Zero();  // sensor axes
@@ -58,6 +62,9 @@ struct ImuRow {
   core::Quat q_ns = core::Quat::Identity();   // true sensor-to-NED attitude (BROAD's ref, but NED)
   bool moving = false;
 };
+
+// The estimator's input for a row: time in nanoseconds, the three triads.
+core::ImuSample imuSample(const ImuRow& row);
 
 struct DrawnTriad {  // what TriadSensor drew: y = D x + o + b(t) + n
   core::Mat3 distortion = core::Mat3::Identity();
