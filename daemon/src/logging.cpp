@@ -1,13 +1,43 @@
 #include "headingd/daemon/logging.hpp"
 
-#include <cstdlib>
 #include <mutex>
+#include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/dist_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
 
+#include "headingd/daemon/journal_stream.hpp"
+
 namespace headingd::daemon {
 namespace {
+
+// Under the journal each line starts with its sd-daemon(3) priority ("<4>[warning] ..."),
+// which journald strips and stores as the entry's PRIORITY (SyslogLevelPrefix=, on by
+// default), so `journalctl -p warning` finds warnings and errors. Chosen over spdlog's
+// systemd_sink (sd_journal_send; Debian 12's spdlog 1.10 has it): the prefix keeps a single
+// stream on stderr, in order with anything else written there (the C++ runtime's last words
+// before an abort, libraries' own prints), needs no second connection to journald (a
+// sandbox or container may not give one, and sd_journal_send then drops lines silently),
+// and is what the test reads back from a file.
+class SdDaemonPriorityFlag final : public spdlog::custom_flag_formatter {
+ public:
+  void format(const spdlog::details::log_msg& msg, const std::tm&, spdlog::memory_buf_t& dest) override {
+    const char prefix[3] = {'<', static_cast<char>('0' + sdDaemonPriority(msg.level)), '>'};
+    dest.append(prefix, prefix + 3);
+  }
+  std::unique_ptr<custom_flag_formatter> clone() const override { return std::make_unique<SdDaemonPriorityFlag>(); }
+};
+
+// The journal stamps each entry itself: no timestamp of our own there.
+std::unique_ptr<spdlog::formatter> stderrFormatter() {
+  auto f = std::make_unique<spdlog::pattern_formatter>();
+  if (stderrIsJournal()) {
+    f->add_flag<SdDaemonPriorityFlag>('*').set_pattern("%*[%l] %v");
+  } else {
+    f->set_pattern("%Y-%m-%d %H:%M:%S.%e [%l] %v");
+  }
+  return f;
+}
 
 std::mutex g_mutex;
 std::shared_ptr<spdlog::sinks::dist_sink_mt> g_dist;
@@ -29,7 +59,7 @@ void installSinks() {
 void setUpLogging(const LogConfig& config, const std::string& level_override) {
   std::lock_guard lock(g_mutex);
   g_stderr = std::make_shared<spdlog::sinks::stderr_sink_mt>();
-  g_stderr->set_pattern(std::getenv("JOURNAL_STREAM") != nullptr ? "[%l] %v" : "%Y-%m-%d %H:%M:%S.%e [%l] %v");
+  g_stderr->set_formatter(stderrFormatter());
   g_dist = std::make_shared<spdlog::sinks::dist_sink_mt>();
   g_file = config.file;
   installSinks();

@@ -70,6 +70,7 @@ void SerialGpsSource::report(SourceReport& out) const {
   switch (c.state) {
     case nmea::SerialGpsState::kOpen: out.state = SourceState::kRunning; break;
     case nmea::SerialGpsState::kWaitingForDevice: out.state = SourceState::kWaiting; break;
+    case nmea::SerialGpsState::kBusy: out.state = SourceState::kWaiting; break;  // last_error names the holder
     case nmea::SerialGpsState::kError: out.state = SourceState::kError; break;
     case nmea::SerialGpsState::kStopped: out.state = SourceState::kStarting; break;
   }
@@ -83,6 +84,7 @@ void SerialGpsSource::report(SourceReport& out) const {
   out.set(i++, "disconnects", c.disconnects);
   out.set(i++, "open_attempts", c.open_attempts);
   out.set(i++, "reopens", c.reopens);
+  out.set(i++, "port_busy", c.port_busy);
   nmea::forEachCounter(c.parser, [&](const char* name, std::uint64_t v) { out.set(i++, "nmea_", name, v); });
 }
 

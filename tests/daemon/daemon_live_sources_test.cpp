@@ -1,13 +1,20 @@
 // The daemon with its live sources: a GPS on a real pseudo-terminal (fed a gpsd capture)
-// beside a recording on the monotonic time axis, and a CAN source on a host without CAN.
+// beside a recording on the monotonic time axis, the same GPS port held by another program
+// first, and a CAN source on a host without CAN.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
+#include <fstream>
 #include <numbers>
+#include <optional>
 #include <regex>
+#include <sstream>
 
 #include "daemon_test_support.hpp"
 #include "lcm_collector.hpp"
+#include "port_holder.hpp"
 #include "pty_fixture.hpp"
 
 namespace headingd::daemon {
@@ -107,6 +114,83 @@ TEST(DaemonLiveSources, SerialGpsOnAPtyFeedsGpsMessagesAndTheWmmDeclination) {
   EXPECT_NEAR(std::remainder((h.heading_true_rad - h.heading_mag_rad + h.mount_yaw_rad - h.declination_rad) * kDeg,
                              360.0),
               0.0, 1e-9);
+}
+
+// Another program (a child standing in for gpsd: TIOCEXCL on the port, reading it) holds the
+// GPS port when the daemon starts: STATUS says the source is waiting, names the holder and
+// counts port_busy, and the log -- stderr as systemd's journal stream, JOURNAL_STREAM naming
+// it -- has the warning with its priority prefix. Once the holder lets go, the daemon takes
+// the port and publishes the receiver's fixes.
+TEST(DaemonLiveSources, SerialGpsHeldByAnotherProgramIsReportedByNameAndTakenWhenFree) {
+  test::TempDir dir;
+  headingd::test::PtyPair pty;
+  const std::string link = dir.file("gps0");
+  headingd::test::pointSymlink(link, pty.slavePath());
+  // Before any thread of this process starts (the LCM collector): the holder is forked.
+  headingd::test::PortHolder holder(pty.slavePath(), headingd::test::HoldWith::kExclusiveMode, "gps-holder");
+  // Named with every other process that has the device open: here this test too (its pty
+  // fixture keeps the slave open), as "headingd-daemon" (the kernel keeps 15 characters).
+  const std::string holder_named = "gps-holder (pid " + std::to_string(holder.pid()) + ")";
+  const std::string url = lcmUrl(12);
+  const std::string config = dir.write(
+      "live.toml", "[daemon]\nstatus_period_s = 0.2\n[lcm]\nurl = \"" + url + "\"\n[imu_csv]\nenabled = true\npath = \"" +
+                       kTrial + "\"\ntime_axis = \"monotonic\"\n[gps]\ndevice = \"" + link +
+                       "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n"
+                       "reopen_backoff_max_s = 0.2\n");
+  const std::string err = dir.file("err");
+  std::ofstream(err).flush();
+  struct stat st {};
+  ASSERT_EQ(::stat(err.c_str(), &st), 0);
+  const std::string journal_stream = "JOURNAL_STREAM=" + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
+  LcmCollector lcm(url);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), err, {journal_stream});
+
+  auto gpsSource = [&]() -> std::optional<headingd::source_status_t> {
+    const auto s = lcm.status();
+    const auto* gps = s.empty() ? nullptr : findSource(s.back().message, "gps_serial");
+    if (gps == nullptr) return std::nullopt;
+    return *gps;
+  };
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        const auto gps = gpsSource();
+        return gps && counter(*gps, "port_busy") >= 3;
+      },
+      5s))
+      << test::readFile(err);
+  const auto busy = *gpsSource();
+  EXPECT_EQ(busy.state, "waiting");
+  EXPECT_NE(busy.last_error.find(link + ": busy, held by "), std::string::npos) << busy.last_error;
+  EXPECT_NE(busy.last_error.find(holder_named), std::string::npos) << busy.last_error;
+  EXPECT_EQ(counter(busy, "reads"), 0);
+  EXPECT_EQ(counter(busy, "nmea_bytes"), 0);
+  const std::string log_while_busy = test::readFile(err);
+  bool warned = false;  // a warning-priority line for the journal, naming the holder
+  std::istringstream lines(log_while_busy);
+  for (std::string line; std::getline(lines, line);) {
+    warned = warned || (line.rfind("<4>[warning] gps: " + link + ": busy, held by ", 0) == 0 &&
+                        line.find(holder_named) != std::string::npos);
+  }
+  EXPECT_TRUE(warned) << log_while_busy;
+
+  holder.release();
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        const auto gps = gpsSource();
+        return gps && gps->state == "running";
+      },
+      5s))
+      << test::readFile(err);
+  const auto bytes = headingd::test::readWireBytes(HEADINGD_GPSD_LOGS_DIR "/mt3339.log");
+  pty.writePaced(bytes, headingd::test::lineBytesPerSecond(38400));
+  EXPECT_TRUE(waitUntil([&] { return lcm.gps().size() >= 30; }, 5s)) << lcm.gps().size() << " GPS messages";
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.waitFor(1s), 0);
+  lcm.stop();
+  const std::string log = test::readFile(err);
+  EXPECT_NE(log.find("<6>[info] gps: " + link + " open at 9600 baud"), std::string::npos) << log;
+  std::fprintf(stderr, "GPS source while held: %s, port_busy %lld\n", busy.last_error.c_str(),
+               static_cast<long long>(counter(busy, "port_busy")));
 }
 
 // This host has no CAN in its kernel: the CAN source must say so on STATUS and keep

@@ -34,6 +34,7 @@ const char* serialGpsStateName(SerialGpsState s) {
     case SerialGpsState::kOpen: return "open";
     case SerialGpsState::kWaitingForDevice: return "waiting_for_device";
     case SerialGpsState::kError: return "error";
+    case SerialGpsState::kBusy: return "busy";
   }
   return "?";
 }
@@ -50,8 +51,7 @@ SerialGpsReader::SerialGpsReader(boost::asio::io_context& io, SerialGpsConfig co
 
 SerialGpsReader::~SerialGpsReader() {
   alive_.reset();
-  boost::system::error_code ignored;
-  port_.close(ignored);
+  closePort();
 }
 
 void SerialGpsReader::start() {
@@ -99,7 +99,12 @@ void SerialGpsReader::attemptOpen() {
   ++counters_.open_attempts;
   auto result = openSerialDevice(config_.device, config_.baud);
   if (auto* failed = std::get_if<SerialOpenFailure>(&result)) {
-    setError(failed->device_missing ? SerialGpsState::kWaitingForDevice : SerialGpsState::kError, failed->message);
+    if (failed->busy) {
+      ++counters_.port_busy;
+      setError(SerialGpsState::kBusy, failed->message + "; retrying");
+    } else {
+      setError(failed->device_missing ? SerialGpsState::kWaitingForDevice : SerialGpsState::kError, failed->message);
+    }
     scheduleOpen(backoff_);
     backoff_ = std::min(backoff_ * 2, toNs(config_.reopen_backoff_max_s));
     return;
@@ -110,6 +115,7 @@ void SerialGpsReader::attemptOpen() {
   boost::system::error_code ec;
   port_.assign(fd, ec);
   if (ec) {
+    releaseSerialDevice(fd);
     ::close(fd);
     setError(SerialGpsState::kError, config_.device + ": " + ec.message());
     scheduleOpen(backoff_);
@@ -216,6 +222,7 @@ void SerialGpsReader::closePort() {
   idle_timer_.cancel();
   path_timer_.cancel();
   boost::system::error_code ignored;
+  if (port_.is_open()) releaseSerialDevice(port_.native_handle());
   port_.close(ignored);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // spdlog set-up: stderr always (journald picks it up under systemd), plus an optional file
-// that SIGHUP reopens (for logrotate). Under systemd (JOURNAL_STREAM set) lines carry no
-// timestamp of their own: the journal adds one.
+// that SIGHUP reopens (for logrotate). When stderr is the journal (JOURNAL_STREAM names it,
+// journal_stream.hpp) lines carry their priority as an sd-daemon "<N>" prefix and no
+// timestamp of their own (the journal adds one): "<4>[warning] gps: ...".
 #include <memory>
 #include <spdlog/spdlog.h>
 #include <string>

@@ -7,6 +7,11 @@
 // in. Each time it closes the port and retries the path with a bounded back-off
 // (SerialGpsConfig); nothing here blocks the io_context or spins.
 //
+// The port is ours alone (serial_port_open.hpp): while another program holds it (gpsd, a
+// terminal program, a second headingd) the reader reads nothing, says who holds it (state
+// busy, last_error "…: busy, held by gpsd (pid 812); retrying", counter port_busy) and
+// retries with the same back-off, rather than take part of the byte stream.
+//
 // Threading: everything runs on the io_context's thread(s) through one implicit strand, so
 // run the io_context on one thread. Handlers are called on that thread; counters() too must
 // be called there (post to it from elsewhere). Destroy the reader on that thread or when the
@@ -33,8 +38,10 @@ enum class SerialGpsState {
   kOpen,              // reading
   kWaitingForDevice,  // the path does not exist (not plugged in, or unplugged): retrying
   kError,             // the path exists but cannot be used (not a tty, permissions): retrying
+  kBusy,              // another program holds the port: retrying
 };
-const char* serialGpsStateName(SerialGpsState s);  // "stopped", "open", "waiting_for_device", "error"
+// "stopped", "open", "waiting_for_device", "error", "busy"
+const char* serialGpsStateName(SerialGpsState s);
 
 struct SerialGpsCounters {
   Counters parser;                 // bytes, lines, and every sentence outcome (counters.hpp)
@@ -45,6 +52,7 @@ struct SerialGpsCounters {
   std::uint64_t open_attempts = 0;
   std::uint64_t reopen_attempts = 0;  // attempts after the first one
   std::uint64_t reopens = 0;          // successful opens after the first one
+  std::uint64_t port_busy = 0;        // open attempts that found the port held by another program
   SerialGpsState state = SerialGpsState::kStopped;
   std::string last_error;  // empty until something went wrong; kept after recovery
 };
