@@ -7,8 +7,13 @@
 // alone (picocom), both. As root, open() ignores TIOCEXCL and the reader sees gpsd's mode
 // with TIOCGEXCL; unprivileged, open() fails with EBUSY. CTest runs this file both ways
 // (serial.busy_port_unprivileged drops root with setpriv), so both paths are exercised.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/ioctl.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include "headingd/nmea/serial_gps_reader.hpp"
 #include "headingd/nmea/serial_port_open.hpp"
@@ -80,7 +85,9 @@ INSTANTIATE_TEST_SUITE_P(HoldWith, SerialPortBusy,
                          [](const auto& info) { return std::string(holdWithName(info.param)); });
 
 // Once the reader has the port, a second opener is turned away: a second reader (another
-// headingd on the same device) is busy, naming this process, and reads nothing.
+// headingd on the same device) is busy and reads nothing. On a pty the guard is the flock
+// alone: the reader does not put a pty in exclusive mode (a killed reader would leave it so
+// while the pty's creator keeps the slave open, refusing the restarted one).
 TEST(SerialPortExclusive, ASecondReaderOfTheSamePortIsTurnedAway) {
   PtyPair pty;
   Harness first(testConfig(pty.slavePath()));
@@ -93,7 +100,14 @@ TEST(SerialPortExclusive, ASecondReaderOfTheSamePortIsTurnedAway) {
   // itself as the other program).
   EXPECT_NE(failure.message.find("busy, held by an unknown program"), std::string::npos) << failure.message;
 
-  // When the first reader stops, it leaves the tty as it found it: not in exclusive mode.
+  const int probe = ::open(pty.slavePath().c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  ASSERT_GE(probe, 0) << "a pty held by the reader can still be opened: it is not in exclusive mode";
+  int exclusive = -1;
+  ASSERT_EQ(::ioctl(probe, TIOCGEXCL, &exclusive), 0);
+  EXPECT_EQ(exclusive, 0);
+  ::close(probe);
+
+  // Once the first reader stops, its lock is gone with its descriptor.
   first.stop();
   result = nmea::openSerialDevice(pty.slavePath(), 115200);
   ASSERT_TRUE(std::holds_alternative<nmea::OpenedSerialDevice>(result))
@@ -101,6 +115,34 @@ TEST(SerialPortExclusive, ASecondReaderOfTheSamePortIsTurnedAway) {
   const int fd = std::get<nmea::OpenedSerialDevice>(result).fd;
   nmea::releaseSerialDevice(fd);
   ::close(fd);
+}
+
+// The daemon killed while it has the port (SIGKILL, or the watchdog's SIGABRT): its restart
+// opens the port at once. On a pty whose creator keeps the slave open, exclusive mode set by
+// the killed reader would outlive it and refuse the restart; its flock dies with it.
+TEST(SerialPortExclusive, AReaderKilledWithThePortOpenDoesNotLockOutItsRestart) {
+  PtyPair pty;
+  int ready[2];
+  ASSERT_EQ(::pipe2(ready, O_CLOEXEC), 0);
+  const pid_t killed = ::fork();
+  ASSERT_GE(killed, 0);
+  if (killed == 0) {  // the reader that is killed: opens the port as the reader does, then waits
+    auto opened = nmea::openSerialDevice(pty.slavePath(), 115200);
+    const char ok = std::holds_alternative<nmea::OpenedSerialDevice>(opened) ? 1 : 0;
+    if (::write(ready[1], &ok, 1) != 1) ::_exit(1);
+    for (;;) ::pause();
+  }
+  ::close(ready[1]);
+  char ok = 0;
+  ASSERT_EQ(::read(ready[0], &ok, 1), 1);
+  ::close(ready[0]);
+  ASSERT_EQ(ok, 1) << "the first reader could not open the port";
+  ::kill(killed, SIGKILL);
+  ::waitpid(killed, nullptr, 0);
+
+  Harness restarted(testConfig(pty.slavePath()));
+  ASSERT_TRUE(restarted.waitState(SerialGpsState::kOpen)) << restarted.counters().last_error;
+  EXPECT_EQ(restarted.counters().port_busy, 0u);
 }
 
 }  // namespace

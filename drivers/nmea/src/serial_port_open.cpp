@@ -4,6 +4,7 @@
 #include <sys/file.h>
 #include <sys/ioctl.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -50,6 +51,12 @@ SerialOpenFailure busy(const std::string& path) {
   return SerialOpenFailure{false, true, m};
 }
 
+// Unix98 pty slaves (/dev/pts/N) have majors 136 .. 143 (the kernel's devices.txt).
+bool isPtySlave(const struct stat& st) {
+  const unsigned m = major(st.st_rdev);
+  return m >= 136 && m <= 143;
+}
+
 }  // namespace
 
 std::variant<OpenedSerialDevice, SerialOpenFailure> openSerialDevice(const std::string& path, unsigned baud) {
@@ -79,7 +86,7 @@ std::variant<OpenedSerialDevice, SerialOpenFailure> openSerialDevice(const std::
 
   // Ours alone, checked before anything is changed on the port. No one lock sees every
   // other program, so three steps:
-  // - TIOCEXCL (tty_ioctl(4)) puts the tty in exclusive mode: every further open() by a
+  // - TIOCEXCL (tty_ioctl(4), below) puts the tty in exclusive mode: every further open() by a
   //   process without CAP_SYS_ADMIN fails with EBUSY. gpsd sets it on the serial devices it
   //   opens (and clears it on close), so that EBUSY, above, is how an unprivileged headingd --
   //   the unit's user -- sees gpsd. Set by us, it keeps gpsd (which drops root) and anything
@@ -105,8 +112,15 @@ std::variant<OpenedSerialDevice, SerialOpenFailure> openSerialDevice(const std::
     ::close(fd);  // the flock goes with it; the other holder's exclusive mode stays
     return busy(path);
   }
-  if (::ioctl(fd, TIOCEXCL) != 0) return fail("cannot take exclusive use (TIOCEXCL)", errno);
-  exclusive = true;
+  // Not on a pty (gpsd makes the same exception): exclusive mode lives as long as anyone has
+  // the tty open, and a pty's creator often keeps its slave open, so a headingd killed without
+  // clearing it (SIGKILL, the watchdog's SIGABRT) would leave the pty refusing its own
+  // restart, unprivileged, for good. On a real port the mode ends with the last close. The
+  // flock, which dies with the process, still guards a pty.
+  if (!isPtySlave(st)) {
+    if (::ioctl(fd, TIOCEXCL) != 0) return fail("cannot take exclusive use (TIOCEXCL)", errno);
+    exclusive = true;
+  }
 
   termios t{};
   if (::tcgetattr(fd, &t) != 0) return fail("cannot read terminal settings", errno);

@@ -21,7 +21,8 @@ struct SerialOpenFailure {
 
 // baud must be a standard rate (isStandardBaudRate); anything else fails with a message.
 // On success the descriptor holds an exclusive flock and the tty is in exclusive mode
-// (TIOCEXCL); releaseSerialDevice undoes the latter before the descriptor is closed.
+// (TIOCEXCL; not a pty, see the .cpp); releaseSerialDevice undoes the latter before the
+// descriptor is closed.
 std::variant<OpenedSerialDevice, SerialOpenFailure> openSerialDevice(const std::string& path, unsigned baud);
 
 // Clears the tty's exclusive mode (TIOCNXCL) on a descriptor from openSerialDevice, before it
