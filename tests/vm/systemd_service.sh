@@ -4,7 +4,8 @@
 # the package with dpkg -i, points its conffile at vcan0 and a pty GPS (/dev/gps0), plays the
 # demo's IMU into vcan0 with canplayer, and checks:
 #   1. `systemctl start headingd` returns with the unit active (Type=notify: after READY=1);
-#   2. HEADING on LCM at 100 Hz, fresh (the IMU flows), and GPS epochs from the pty;
+#   2. HEADING on LCM at 100 Hz (under plain emulation: the 100 Hz schedule, see below),
+#      fresh (the IMU flows), one per estimator tick, and GPS epochs from the pty;
 #   3. a SIGSTOPped daemon is killed by the watchdog and restarted;
 #   4. a SIGKILLed daemon is restarted (Restart=on-failure);
 #   5. journalctl -p warning shows the daemon's warnings and not its info lines;
@@ -141,13 +142,21 @@ gps_open() { journalctl -q -u "$unit" -o cat SYSLOG_IDENTIFIER=headingd | grep -
 if ms=$(wait_for 30 gps_open); then pass "the daemon opened /dev/gps0 $(ms_to_s "$ms") s after it appeared";
 else fail "the daemon did not open /dev/gps0 within 30 s"; fi
 
-step "LCM: HEADING at 100 Hz, GPS epochs (lcm-logger for 6 s)"
-lcm-logger -q -c 'HEADING|GPS' -f "$work/lcm.log" &
+# Under plain emulation (systemd-detect-virt: qemu) the guest CPU is many times slower than
+# the host's and shared with the test's own processes: the estimator loop misses deadlines
+# (it counts and logs each), so HEADING comes at 60-80 Hz there. The checks then are the
+# schedule (every 10 ms period a tick or a counted miss), one HEADING per tick, and at least
+# 50 Hz; with a real CPU (KVM, a machine) HEADING itself must come at >= 95 Hz.
+virt=$(systemd-detect-virt 2>/dev/null)
+min_heading_hz=95
+[[ "$virt" == qemu ]] && min_heading_hz=50
+step "LCM: HEADING at 100 Hz, STATUS, GPS (lcm-logger for 6 s; virtualization: $virt)"
+lcm-logger -q -c 'HEADING|STATUS|GPS' -f "$work/lcm.log" &
 logger_pid=$!
 sleep 6
 kill -INT "$logger_pid"; wait "$logger_pid" 2>/dev/null
-"$python" "$here/lcm_log_rate.py" "$work/lcm.log" \
-  HEADING min_hz=80 max_hz=120 min_fresh=0.9 min_count=300 GPS min_count=3 || failures=$((failures + 1))
+"$python" "$here/lcm_headingd_check.py" "$work/lcm.log" --min-heading-hz "$min_heading_hz" --min-gps 3 \
+  || failures=$((failures + 1))
 
 # ---------------------------------------------------------------------------------------------
 watchdog_us=$(usec "$(prop WatchdogUSec)")
@@ -205,7 +214,7 @@ journalctl -q -u "$unit" SYSLOG_IDENTIFIER=headingd -o export --output-fields=PR
   function flush() { if (m != "") print "<" p "> " m; p = ""; m = "" }
   /^__CURSOR=/ { flush() } /^PRIORITY=/ { p = substr($0, 10) } /^MESSAGE=/ { m = substr($0, 9) }
   END { flush() }' >"$work/daemon-lines"
-grep -E '^<[0-4]>' "$work/daemon-lines" | head -n 10 | sed 's/^/  /'
+{ grep -E "^<[0-4]>" "$work/daemon-lines" 2>/dev/null || true; } | head -n 10 | sed 's/^/  /'
 echo "  ... and $(grep -c '^<[5-7]>' "$work/daemon-lines") lines at <5>..<7> (notice, info, debug)"
 journalctl -q -u "$unit" SYSLOG_IDENTIFIER=headingd -o cat -p warning >"$work/warnings"
 # Known lines: the GPS missing at the first start (a warning: "gps: /dev/gps0: device does
