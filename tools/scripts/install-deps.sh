@@ -26,7 +26,9 @@ packages=(
   libglib2.0-dev       # liblcm-dev's pkg-config file requires glib
   default-jdk-headless # javac/jar: the lcm-spy jar of headingd's messages
   libsystemd-dev       # sd_notify, watchdog (daemon)
-  systemd              # systemd-analyze verify in the tests
+  systemd              # systemd-analyze verify in the tests; PID 1 of vm-run.sh --systemd
+  dbus                 # the system bus systemd-analyze security asks (vm-run.sh --systemd)
+  python3              # the systemd VM test's pty GPS and LCM log check (system interpreter)
   can-utils            # cansend/candump/canplayer in the vcan tests
   qemu-system-x86      # the VM that gives the vcan tests a kernel with CAN
   busybox-static       # the VM's initramfs userland

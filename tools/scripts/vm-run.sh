@@ -11,10 +11,14 @@ readonly exit_vm_failure=125 # the VM did not boot, set up or power off as expec
 
 usage() {
   cat <<'EOF'
-usage: vm-run.sh [--timeout SEC] [--mem MB] [--cpus N] [--env NAME=VALUE]... [--rw DIR]... -- COMMAND [ARGS...]
+usage: vm-run.sh [--systemd] [--timeout SEC] [--mem MB] [--cpus N] [--env NAME=VALUE]... [--rw DIR]... -- COMMAND [ARGS...]
 
 Runs COMMAND with vcan0, vcan1 and a multicast-capable lo, in the host's working directory and
 environment (the whole environment passes through; --env adds or overrides one variable).
+  --systemd       always the VM, with systemd as PID 1: COMMAND runs as a unit once the basic
+                  system is up (journald, sysusers, tmpfiles), so it can use systemctl,
+                  journalctl, systemd-run, systemd-analyze and dpkg -i with real maintainer
+                  scripts; see tools/scripts/vm/README.md, "--systemd"
   --timeout SEC   kill COMMAND (and the VM) after SEC seconds; exit status 124 (default 600)
   --mem MB        guest memory (default 1024)
   --cpus N        guest CPUs (default 1: a second one costs ~1-2 s of boot without KVM)
@@ -40,8 +44,10 @@ mem_mb=1024
 cpus=1
 extra_env=()
 rw_dirs=()
+with_systemd=0
 while (($#)); do
   case "$1" in
+    --systemd) with_systemd=1; shift ;;
     --timeout) [[ "${2:-}" =~ ^[0-9]+$ ]] || die_usage "--timeout needs seconds"; timeout_s=$2; shift 2 ;;
     --mem) [[ "${2:-}" =~ ^[0-9]+$ ]] || die_usage "--mem needs megabytes"; mem_mb=$2; shift 2 ;;
     --cpus) [[ "${2:-}" =~ ^[1-9][0-9]*$ ]] || die_usage "--cpus needs a count"; cpus=$2; shift 2 ;;
@@ -56,6 +62,11 @@ done
 
 mode=${HEADINGD_VM:-auto}
 [[ "$mode" =~ ^(auto|force|native)$ ]] || die_usage "HEADINGD_VM must be auto, force or native"
+if ((with_systemd)); then
+  # systemd as PID 1 needs a machine of its own: a network namespace is not one.
+  [[ "$mode" != native ]] || die_usage "--systemd needs the VM, but HEADINGD_VM=native"
+  mode=force
+fi
 
 # ---------------------------------------------------------------------------------------------
 # Native: a private network namespace (root: unshare -n; otherwise a user namespace too).
@@ -160,8 +171,13 @@ case "$accel" in
 esac
 
 # Quiet console (loglevel=3: errors only); panic=-1 with -no-reboot turns a guest panic
-# (e.g. /init dying) into QEMU exiting instead of hanging until the timeout.
-cmdline="console=ttyS0 loglevel=3 panic=-1 edd=off rdinit=/init"
+# (e.g. /init dying) into QEMU exiting instead of hanging until the timeout. no_timer_check:
+# on a loaded host the emulated timer can miss the kernel's early IO-APIC check, which then
+# panics ("IO-APIC + timer doesn't work!"); the timer works, the check is skipped.
+cmdline="console=ttyS0 loglevel=3 panic=-1 edd=off no_timer_check rdinit=/init"
+# --systemd: /init hands the root to systemd, which boots to the job's target; its unit
+# status lines go to the console log (where the boot's time went).
+((with_systemd)) && cmdline+=" headingd_vm.init=systemd systemd.unit=headingd-vm.target systemd.show_status=true"
 # shellcheck disable=SC2054 # commas separate QEMU's sub-options, not array elements
 qemu=(
   qemu-system-x86_64 "${accel_args[@]}"
@@ -224,5 +240,5 @@ if [[ ! -f "$job/status" ]]; then
   exit "$exit_vm_failure"
 fi
 status=$(cat "$job/status")
-[[ -n "${HEADINGD_VM_VERBOSE:-}" ]] && say "VM run took ${elapsed_ms} ms (${accel}), COMMAND exit status $status"
+[[ -n "${HEADINGD_VM_VERBOSE:-}" ]] && say "VM run took ${elapsed_ms} ms (${accel}$( ((with_systemd)) && echo ", systemd")), COMMAND exit status $status"
 exit "$status"

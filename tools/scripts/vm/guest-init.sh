@@ -4,7 +4,9 @@
 # sees the host's binaries, libraries and paths but its writes stay in the guest, brings up lo
 # (with a multicast route, for LCM udpm ttl=0), vcan0 and vcan1, runs the job that vm-run.sh
 # wrote into the "job" share with its stdout/stderr on two virtio-serial ports, writes the
-# exit status back into the job share, and powers off.
+# exit status back into the job share, and powers off. With headingd_vm.init=systemd on the
+# kernel command line (vm-run.sh --systemd) it hands the root to systemd instead, which runs
+# the job as a unit (boot_systemd).
 # Everything here goes to the console (ttyS0), which the host keeps as a log file.
 export PATH=/bin
 
@@ -16,6 +18,39 @@ fail() {
   sync
   poweroff -f
   sleep 60
+}
+
+# vm-run.sh --systemd: the overlay root, network and shares are set up as for a job, then
+# systemd becomes PID 1 on that root and runs the job as a unit (/systemd: the units, the
+# mask list and the job wrapper, from tools/scripts/vm/systemd/).
+boot_systemd() {
+  say "installing the job's units, masking the VM's useless units"
+  etc_units=$r/etc/systemd/system
+  mkdir -p $etc_units $r/etc/systemd/system-generators $r/run/headingd-vm-init
+  cp /systemd/headingd-vm.target /systemd/headingd-vm-job.service $etc_units/ || fail "copy of the job's units"
+  cp /systemd/run-job.sh $r/run/headingd-vm-init/ || fail "copy of run-job.sh"
+  sed 's/#.*//' /systemd/masked-units | while read -r unit; do
+    [ -n "$unit" ] && ln -sf /dev/null "$etc_units/$unit"
+  done
+  # Generators read the host's fstab, disks, SysV scripts and consoles: none of it applies.
+  # The debug generator stays (systemd.mask= and systemd.wants= on the kernel command line).
+  for generator in $r/lib/systemd/system-generators/* $r/usr/lib/systemd/system-generators/*; do
+    name=${generator##*/}
+    [ -e "$generator" ] && [ "$name" != systemd-debug-generator ] \
+      && ln -sf /dev/null "$r/etc/systemd/system-generators/$name"
+  done
+  : >$r/etc/fstab
+  # A host that is a container (docker leaves /.dockerenv) would make systemd believe it runs
+  # in one: it would then ignore the kernel command line (systemd.unit=) and skip the
+  # machine's setup. The guest is a real machine.
+  rm -f $r/.dockerenv $r/run/.containerenv
+  echo headingd-vm >$r/etc/hostname
+  [ -x $r/lib/systemd/systemd ] || fail "no /lib/systemd/systemd on the host root (systemd not installed)"
+  say "switching to systemd as PID 1"
+  umount /proc /sys
+  umount -l /dev
+  exec switch_root $r /lib/systemd/systemd
+  fail "switch_root to /lib/systemd/systemd"
 }
 
 mount -t proc proc /proc
@@ -88,6 +123,10 @@ for port in /sys/class/virtio-ports/*; do
   esac
 done
 [ "$out" != /dev/null ] || fail "no virtio-serial port named stdout"
+
+if grep -qw 'headingd_vm.init=systemd' /proc/cmdline; then
+  boot_systemd # does not return
+fi
 
 say "running the job"
 chroot $r /bin/bash /run/headingd-vm/run.sh </dev/null >"$out" 2>"$err"

@@ -120,11 +120,12 @@ if [[ ! -f "$kernel_dir/ready" ]]; then
   say "kernel $version with $(wc -l <"$kernel_dir/modules/load-order") modules ready in $kernel_dir"
 fi
 
-# --- 3. Initramfs: busybox, the modules in load order, /init. Name = hash of its inputs. ---
-inputs_hash=$( { cat "$here/guest-init.sh"; echo "$kernel_key"; } | sha256sum | cut -c1-16)
+# --- 3. Initramfs: busybox, the modules in load order, /init, systemd/ (for --systemd). ---
+# Name = hash of its inputs.
+inputs_hash=$( { cat "$here/guest-init.sh" "$here"/systemd/*; echo "$kernel_key"; } | sha256sum | cut -c1-16)
 initramfs="$cache/initramfs-$inputs_hash.cpio.gz"
 if [[ ! -f "$initramfs" ]]; then
-  say "building initramfs $(basename "$initramfs") (busybox-static, modules, guest-init.sh)"
+  say "building initramfs $(basename "$initramfs") (busybox-static, modules, guest-init.sh, systemd/)"
   stage=$(mktemp -d "$cache/stage.XXXXXX")
   trap 'rm -rf "$stage"' EXIT
   mkdir -p "$stage"/{bin,dev,proc,sys,mnt,newroot,job,overlay,lib/modules}
@@ -137,6 +138,9 @@ if [[ ! -f "$initramfs" ]]; then
   done
   cp "$kernel_dir"/modules/* "$stage/lib/modules/"
   cp "$here/guest-init.sh" "$stage/init"
+  # vm-run.sh --systemd: the job's units, the mask list, the job wrapper.
+  mkdir -p "$stage/systemd"
+  cp "$here"/systemd/* "$stage/systemd/"
   chmod 755 "$stage/init"
   (cd "$stage" && find . -print0 | sort -z | cpio --null -o -H newc --quiet | gzip -1) >"$initramfs.tmp"
   mv "$initramfs.tmp" "$initramfs"

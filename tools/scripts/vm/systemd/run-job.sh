@@ -1,0 +1,26 @@
+#!/bin/sh
+# vm-run.sh --systemd: started by headingd-vm-job.service (the host's /bin/sh, under systemd).
+# Runs the job vm-run.sh wrote (/run/headingd-vm/run.sh: environment, working directory,
+# COMMAND) with its stdout and stderr on the two virtio-serial ports, as guest-init.sh does
+# in the default mode, and writes COMMAND's exit status into the job share. The unit powers
+# the guest off when this script ends.
+out=/dev/null
+err=/dev/null
+for port in /sys/class/virtio-ports/*; do
+  [ -e "$port/name" ] || continue
+  case "$(cat "$port/name")" in
+    stdout) out=/dev/${port##*/} ;;
+    stderr) err=/dev/${port##*/} ;;
+  esac
+done
+if [ "$out" = /dev/null ]; then
+  echo "vm-job: SETUP FAILED: no virtio-serial port named stdout" >&2
+  exit 1
+fi
+read -r up _ </proc/uptime
+echo "vm-job: [$up s] running the job under systemd"
+/bin/bash /run/headingd-vm/run.sh </dev/null >"$out" 2>"$err"
+status=$?
+echo "$status" >/run/headingd-vm/status.tmp && mv /run/headingd-vm/status.tmp /run/headingd-vm/status
+read -r up _ </proc/uptime
+echo "vm-job: [$up s] job exited with status $status; powering off"
