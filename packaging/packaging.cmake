@@ -21,16 +21,17 @@ set(CPACK_DEBIAN_PACKAGE_DEPENDS "systemd-sysusers, python3:any")
 # come with liblcm-bin; can-utils to look at the bus.
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "liblcm-dev, liblcm-java, liblcm-bin, can-utils")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "real-time heading and attitude daemon (IMU over CAN, GPS, LCM)")
-set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "real-time heading and attitude daemon (IMU over CAN, GPS, LCM)
- headingd estimates the attitude and the true heading of a body-worn Linux
- computer from a 9-axis IMU on SocketCAN (frames decoded by a DBC file) and
- an NMEA GPS receiver on a serial port, with the World Magnetic Model, and
- publishes them over LCM at a fixed rate. It runs as a systemd service
- (Type=notify, watchdog) configured by /etc/headingd/headingd.toml.
- .
- The package also holds the offline tools (replay, calibration, simulator,
- World Magnetic Model), a demo capture, and the LCM message types for C++,
- Java (lcm-spy) and Python subscribers.")
+# The long description; CPack puts the summary above it as the synopsis, indents each line
+# and turns the empty line into " .".
+set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "headingd estimates the attitude and the true heading of a body-worn Linux
+computer from a 9-axis IMU on SocketCAN (frames decoded by a DBC file) and
+an NMEA GPS receiver on a serial port, with the World Magnetic Model, and
+publishes them over LCM at a fixed rate. It runs as a systemd service
+(Type=notify, watchdog) configured by /etc/headingd/headingd.toml.
+
+The package also holds the offline tools (replay, calibration, simulator,
+World Magnetic Model), a demo capture, and the LCM message types for C++,
+Java (lcm-spy) and Python subscribers.")
 # Maintainer scripts (user, systemd) and the conffile list. Strict permissions: 0755
 # scripts, 0644 lists, as dpkg-deb and lintian expect.
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
