@@ -6,8 +6,10 @@ set(CPACK_PACKAGE_NAME headingd)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_CONTACT "headingd maintainers <maintainers@users.noreply.h-seed-c0998dae.example>")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
-# Absolute destinations (/etc/headingd, /lib/systemd/system) are kept as they are.
-set(CPACK_SET_DESTDIR ON)
+# Relative install destinations go under /usr whatever the build's CMAKE_INSTALL_PREFIX
+# (so a development tree packs the same layout); absolute ones (/etc/headingd,
+# /lib/systemd/system) stay as they are. CPACK_SET_DESTDIR would use the build's prefix.
+set(CPACK_SET_DESTDIR OFF)
 set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
