@@ -124,7 +124,11 @@ EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::stri
       if (key.str() == s.key) spec = &s;
     }
     const std::string at = where(source, node.source()) + ": [estimator] " + std::string(key.str());
-    if (spec == nullptr) throw ConfigError(at + ": unknown key (see config/estimator.toml for the list)");
+    if (spec == nullptr) {
+      std::string list;
+      for (const auto& s : specs) list += (list.empty() ? "" : ", ") + std::string(s.key);
+      throw ConfigError(at + ": unknown key (expected one of: " + list + "; config/estimator.toml documents them)");
+    }
     const std::optional<double> value = node.value<double>();  // integers convert too
     if (!value || !(node.is_floating_point() || node.is_integer())) {
       throw ConfigError(at + ": expected a number in " + spec->unit);

@@ -45,6 +45,9 @@ void progress(const char* fmt, Args... args) {
   std::fprintf(stderr, fmt, args...);
   std::fputc('\n', stderr);
 }
+// Text without arguments, printed as it is (Debian's -Werror=format-security rejects a
+// non-literal format without arguments).
+void progress(const char* text) { progress("%s", text); }
 
 struct FieldNorm {
   std::optional<double> norm_uT;

@@ -36,6 +36,10 @@ packages=(
   kmod                 # modinfo/depmod for the VM's CAN modules
   xz-utils             # unpacks the VM kernel's modules
   binutils             # readelf: the VM boots the uncompressed kernel (3 s faster)
+  python3              # packaging/config-doc.py: headingd.toml(5) and the installed config
+  help2man             # the programs' man pages, from their --help
+  dpkg-dev             # dpkg-shlibdeps, dpkg-buildflags: the Debian package (build-deb.sh)
+  lintian              # checks the Debian package (tests/package)
 )
 
 missing=()

@@ -16,6 +16,11 @@ using core::Quat;
 using core::Vec3;
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
+// Appends text without arguments as it is: printf would read '%' in it, and Debian's
+// -Werror=format-security (tools/scripts/build-deb.sh) rejects a non-literal format
+// without arguments.
+void append(std::string& line, const char* text) { line += text; }
+
 // Appends printf-formatted text to a line.
 template <typename... Args>
 void append(std::string& line, const char* fmt, Args... args) {
