@@ -1,25 +1,16 @@
 #!/usr/bin/env bash
 # Host side of the CTest vm_systemd_service: boots the VM with systemd as PID 1
 # (vm-run.sh --systemd) and runs systemd_service.sh there on the Debian package.
-# The package: $HEADINGD_DEB when set, else what tools/scripts/build-deb.sh builds into
-# OUTDIR (its last stdout line is the .deb's path); without either the test is skipped (77).
-# usage: systemd_service_test.sh [OUTDIR]   (OUTDIR: where build-deb.sh writes; default a
-#        temporary directory)
+# The package: $HEADINGD_DEB when set, else one cpack makes from BUILD_DIR
+# (tests/package/pack_build_tree.sh; tools/scripts/build-deb.sh builds the release one).
+# usage: systemd_service_test.sh BUILD_DIR
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 
-deb=${HEADINGD_DEB:-}
-if [[ -z "$deb" ]]; then
-  if [[ ! -x "$repo/tools/scripts/build-deb.sh" ]]; then
-    echo "SKIP: no package: set HEADINGD_DEB=FILE.deb (tools/scripts/build-deb.sh is not there to build one)"
-    exit 77
-  fi
-  outdir=${1:-$(mktemp -d)}
-  mkdir -p "$outdir"
-  echo "building the package: tools/scripts/build-deb.sh $outdir"
-  deb=$("$repo/tools/scripts/build-deb.sh" "$outdir" | tail -n 1)
-fi
+out=$("$repo/tests/package/pack_build_tree.sh" "$1" "$1/package-vm")
+echo "${out%$'\n'*}"
+deb=${out##*$'\n'}
 [[ -f "$deb" ]] || { echo "FAIL: no package at '$deb'"; exit 1; }
 deb=$(cd "$(dirname "$deb")" && pwd -P)/$(basename "$deb")
 
