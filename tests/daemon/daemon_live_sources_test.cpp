@@ -73,7 +73,7 @@ TEST(DaemonLiveSources, SerialGpsOnAPtyFeedsGpsMessagesAndTheWmmDeclination) {
       },
       5s))
       << test::readFile(dir.file("err"));
-  const auto bytes = test::readWireBytes(test_data::file(test_data::kGpsdLogs, "mt3339.log"));
+  const auto bytes = headingd::test::readWireBytes(test_data::file(test_data::kGpsdLogs, "mt3339.log"));
   pty.writePaced(bytes, headingd::test::lineBytesPerSecond(38400));
   EXPECT_TRUE(waitUntil([&] { return lcm.gps().size() >= 30; }, 5s)) << lcm.gps().size() << " GPS messages";
   std::this_thread::sleep_for(1200ms);  // one more STATUS
