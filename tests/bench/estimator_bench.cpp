@@ -7,6 +7,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
@@ -87,6 +88,8 @@ void BM_EstimatorBroadTrial(benchmark::State& state) {
     state.SkipWithError(("cannot read the BROAD trial: " + error).c_str());
     return;
   }
+  // The trial's file name, as the set it comes from depends on the checkout (tests/CMakeLists.txt).
+  state.SetLabel(std::filesystem::path(HEADINGD_BENCH_BROAD_TRIAL).filename().string());
   runEstimator(state, samples);
 }
 BENCHMARK(BM_EstimatorBroadTrial)->Unit(benchmark::kMillisecond);

@@ -16,6 +16,7 @@
 #include "lcm_collector.hpp"
 #include "port_holder.hpp"
 #include "pty_fixture.hpp"
+#include "test_data.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -79,7 +80,7 @@ TEST(DaemonLiveSources, SerialGpsOnAPtyFeedsGpsMessagesAndTheWmmDeclination) {
       },
       5s))
       << test::readFile(dir.file("err"));
-  const auto bytes = headingd::test::readWireBytes(HEADINGD_GPSD_LOGS_DIR "/mt3339.log");
+  const auto bytes = headingd::test::readWireBytes(test_data::file(test_data::kGpsdLogs, "mt3339.log"));
   pty.writePaced(bytes, headingd::test::lineBytesPerSecond(38400));
   EXPECT_TRUE(waitUntil([&] { return lcm.gps().size() >= 30; }, 5s)) << lcm.gps().size() << " GPS messages";
   std::this_thread::sleep_for(1200ms);  // one more STATUS
@@ -181,7 +182,7 @@ TEST(DaemonLiveSources, SerialGpsHeldByAnotherProgramIsReportedByNameAndTakenWhe
       },
       5s))
       << test::readFile(err);
-  const auto bytes = headingd::test::readWireBytes(HEADINGD_GPSD_LOGS_DIR "/mt3339.log");
+  const auto bytes = headingd::test::readWireBytes(test_data::file(test_data::kGpsdLogs, "mt3339.log"));
   pty.writePaced(bytes, headingd::test::lineBytesPerSecond(38400));
   EXPECT_TRUE(waitUntil([&] { return lcm.gps().size() >= 30; }, 5s)) << lcm.gps().size() << " GPS messages";
   daemon.signal(SIGTERM);

@@ -2,7 +2,10 @@
 # headingd-replay then headingd-eval on one BROAD trial: one output row per input row, the
 # documented header, and an RMSE below the trial's accuracy limit.
 set -euo pipefail
-replay=$1 eval=$2 trial=$3
+# BROAD_DIR and KIND as cmake/test_data.cmake chose them; TRIAL without .csv.gz.
+replay=$1 eval=$2 broad=$3 kind=$4 trial=$broad/$5.csv.gz
+source "$(dirname "$0")/../support/test_data.sh"
+announce_data_set "$broad" "$kind" .csv.gz trials
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 

@@ -12,6 +12,7 @@
 #include "headingd/sim/simulation.hpp"
 #include "headingd/study/recording.hpp"
 #include "headingd/study/scoring.hpp"
+#include "test_data.hpp"
 
 namespace headingd::generalisation_test {
 
@@ -45,30 +46,11 @@ inline study::EpisodeScore episode(const study::Recording& r) {
   return study::scoreEpisode(r, study::runEstimator(r, core::EstimatorParams{}), 5.0, 1.0 * kDeg);
 }
 
-// BROAD's trials: all 14 of ../shared/data/broad when it is beside the checkout, else the
-// three in the repository (tests/data/broad and the demo's trial 05). `which` names the set.
-inline std::vector<std::string> broadTrials(std::string* which) {
+// BROAD's trials: ../shared/data/broad's when it is beside the checkout, else the
+// repository's subset (tests/data/broad); prints which (test_data.hpp).
+inline std::vector<std::string> broadTrials() {
   std::vector<std::string> paths;
-  const std::filesystem::path shared = std::filesystem::path(HEADINGD_SHARED_DIR) / "data" / "broad";
-  const auto add = [&paths](const std::filesystem::path& dir, const std::string& prefix) {
-    if (!std::filesystem::is_directory(dir)) return;
-    for (const auto& e : std::filesystem::directory_iterator(dir)) {
-      const std::string f = e.path().filename().string();
-      if (f.ends_with(".csv.gz") && f.starts_with(prefix)) paths.push_back(e.path().string());
-    }
-  };
-  add(shared, "");
-  if (!paths.empty()) {
-    *which = "all " + std::to_string(paths.size()) + " trials of " + shared.string();
-  } else {
-    add(HEADINGD_TEST_DATA_DIR "/broad", "");
-    add(HEADINGD_CONFIG_DIR "/demo", "05_");
-    *which = "the repository's " + std::to_string(paths.size()) + " trials (tests/data/broad, config/demo; " +
-             shared.string() + " is not there)";
-  }
-  std::sort(paths.begin(), paths.end(), [](const std::string& a, const std::string& b) {
-    return std::filesystem::path(a).filename() < std::filesystem::path(b).filename();
-  });
+  for (const auto& p : test_data::all(test_data::kBroad)) paths.push_back(p.string());
   return paths;
 }
 

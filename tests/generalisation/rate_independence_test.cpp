@@ -31,10 +31,8 @@ void expectWithin(double value, double reference, double share, const std::strin
 }
 
 TEST(RateIndependence, BroadResampledTo100And50HzStaysWithinTenPercentOfItsNativeError) {
-  std::string which;
-  const std::vector<std::string> trials = broadTrials(&which);
+  const std::vector<std::string> trials = broadTrials();
   ASSERT_FALSE(trials.empty());
-  std::printf("BROAD set: %s\n", which.c_str());
   const std::vector<double> rates = {0.0, 100.0, 50.0};  // 0: as recorded
   std::vector<std::future<std::vector<study::RunScore>>> jobs;
   for (const std::string& path : trials) {

@@ -1,5 +1,6 @@
-// The parser against gpsd, over gpsd's own regression corpus (data/gpsd-logs, README.md
-// there). Every .log goes through the parser, binary ones included: no crash, no hang,
+// The parser against gpsd, over gpsd's own regression corpus: ../shared/data/gpsd-logs (about
+// 100 captures) when it is beside the checkout, else the repository's tests/data/gpsd-logs
+// (11); README.md there. Every .log goes through the parser, binary ones included: no crash, no hang,
 // bounded buffer, same result whatever the chunking. For every .log with a .log.chk, each
 // gpsd TPV report that directly follows a GGA, RMC or GNS sentence is compared with our Fix
 // after that same sentence: lat/lon within 1e-7 deg, track within 0.01 deg, speed within
@@ -40,13 +41,15 @@
 
 #include "headingd/nmea/comment_filter.hpp"
 #include "headingd/nmea/parser.hpp"
+#include "test_data.hpp"
 
 namespace {
 
 using headingd::nmea::FixUpdate;
 using headingd::nmea::Parser;
 
-const std::filesystem::path kLogsDir{HEADINGD_GPSD_LOGS_DIR};
+using headingd::test_data::kGpsdLogs;
+const std::filesystem::path kLogsDir{kGpsdLogs.dir};
 constexpr double kLatLonTolDeg = 1e-7;
 constexpr double kTrackTolDeg = 0.01;
 constexpr double kSpeedTolMps = 0.01;
@@ -69,13 +72,11 @@ std::string readFile(const std::filesystem::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Called before main to name the parameterised tests, so it prints nothing; each test
+// announces the set it reads (test_data::announce).
 std::vector<std::string> logFiles() {
   std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(kLogsDir, ec)) {
-    if (e.path().extension() == ".log") names.push_back(e.path().filename().string());
-  }
-  std::sort(names.begin(), names.end());
+  for (const auto& p : headingd::test_data::files(kGpsdLogs)) names.push_back(p.filename().string());
   return names;
 }
 
@@ -286,6 +287,7 @@ class GpsdLog : public ::testing::TestWithParam<std::string> {};
 // the same sentences and counters come out, the line buffer stays within its bound, and
 // every good line is classified exactly once.
 TEST_P(GpsdLog, ParsesTheSameWhateverTheChunking) {
+  headingd::test_data::announce(kGpsdLogs);
   const std::string log = readFile(kLogsDir / GetParam());
   const ParseRun whole = parseLog(log, 1u, log.size() + 1);
   const ParseRun bytewise = parseLog(log, 2u, 1);
@@ -307,6 +309,7 @@ TEST_P(GpsdLog, ParsesTheSameWhateverTheChunking) {
 class GpsdCheck : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GpsdCheck, AgreesWithGpsd) {
+  headingd::test_data::announce(kGpsdLogs);
   const FileResult r = checkFile(GetParam());
   ASSERT_TRUE(r.has_chk);
   for (const auto& d : r.disagreements) ADD_FAILURE() << r.file << ": " << d;
@@ -368,6 +371,7 @@ FileResult sum(const std::vector<std::string>& files, Scope scope, std::set<std:
 
 // The whole corpus in one table, and the exceptions list kept honest.
 TEST(GpsdCorpus, AgreementTable) {
+  headingd::test_data::announce(kGpsdLogs);
   const auto files = logFiles();
   ASSERT_FALSE(files.empty()) << "no .log files in " << kLogsDir;
   std::set<std::size_t> known_used;
@@ -390,6 +394,7 @@ TEST(GpsdCorpus, AgreementTable) {
 
 // A wider net: the reports after every sentence we decode, not only GGA/RMC/GNS.
 TEST(GpsdCorpus, AgreementAfterEveryDecodedSentence) {
+  headingd::test_data::announce(kGpsdLogs);
   std::set<std::size_t> known_used;
   FileResult total = sum(logFiles(), Scope::kAllDecoded, &known_used, false);
   total.file = "TOTAL (after any decoded sentence)";

@@ -6,6 +6,7 @@
 #include "nmea_test_support.hpp"
 #include "pty_fixture.hpp"
 #include "serial_test_support.hpp"
+#include "test_data.hpp"
 
 namespace headingd::test {
 namespace {
@@ -89,7 +90,7 @@ TEST(EpochAssembler, EveryChecksummedLineGoesToTheLineHandler) {
 }
 
 TEST(EpochAssembler, SameFixesAsTheParserWhateverTheChunking) {
-  const auto wire = readWireBytes(std::filesystem::path(HEADINGD_GPSD_LOGS_DIR) / "furuno_gl_ga.log");
+  const auto wire = readWireBytes(test_data::file(test_data::kGpsdLogs, "furuno_gl_ga.log"));
   const auto want = referenceEpochs(wire);
   for (const std::size_t chunk : {std::size_t{1}, std::size_t{7}, std::size_t{512}, wire.size()}) {
     Out out;

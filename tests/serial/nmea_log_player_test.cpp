@@ -9,6 +9,7 @@
 #include "nmea_test_support.hpp"
 #include "pty_fixture.hpp"
 #include "serial_test_support.hpp"
+#include "test_data.hpp"
 
 namespace headingd::test {
 namespace {
@@ -45,7 +46,7 @@ Played play(NmeaLogPlayerConfig config, std::chrono::seconds timeout = std::chro
 }
 
 TEST(NmeaLogPlayer, PlaysAGpsdCaptureAtItsOwnPaceTimesTheSpeedFactor) {
-  const auto path = std::filesystem::path(HEADINGD_GPSD_LOGS_DIR) / "mt3339.log";
+  const auto path = test_data::file(test_data::kGpsdLogs, "mt3339.log");
   nmea::Counters want_counters;
   const auto want = referenceEpochs(readWireBytes(path), &want_counters);
   constexpr double kSpeed = 20.0;
@@ -116,7 +117,7 @@ TEST(NmeaLogPlayer, UntimedLinesGoWithTheirEpochAndGapsMidnightAndResetsArePlaye
 }
 
 TEST(NmeaLogPlayer, StopEndsPlaybackAndBadArgumentsAreRefused) {
-  const auto path = std::filesystem::path(HEADINGD_GPSD_LOGS_DIR) / "mt3339.log";
+  const auto path = test_data::file(test_data::kGpsdLogs, "mt3339.log");
   boost::asio::io_context io;
   std::size_t fixes = 0;
   NmeaLogPlayer player(io, {path.string(), 1.0, 5.0, {}}, [&](const nmea::Fix&, std::int64_t) { ++fixes; });

@@ -15,6 +15,7 @@
 
 #include <csignal>
 
+#include "test_data.hpp"
 #include "headingd/nmea/serial_gps_reader.hpp"
 #include "headingd/nmea/serial_port_open.hpp"
 #include "port_holder.hpp"
@@ -27,13 +28,12 @@ namespace {
 
 using nmea::SerialGpsState;
 
-const std::filesystem::path kLogs{HEADINGD_GPSD_LOGS_DIR};
 
 class SerialPortBusy : public ::testing::TestWithParam<HoldWith> {};
 
 TEST_P(SerialPortBusy, HolderIsNamedCountedAndNotReadFromThenThePortIsOurs) {
   std::printf("running as uid %d\n", static_cast<int>(::geteuid()));
-  const auto wire = readWireBytes(kLogs / "mt3339.log");
+  const auto wire = readWireBytes(test_data::file(test_data::kGpsdLogs, "mt3339.log"));
   nmea::Counters want_counters;
   const auto want = referenceEpochs(wire, &want_counters);
   ASSERT_GE(want.size(), 5u);

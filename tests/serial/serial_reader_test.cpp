@@ -14,6 +14,7 @@
 #include "pty_fixture.hpp"
 #include "serial_reader_harness.hpp"
 #include "serial_test_support.hpp"
+#include "test_data.hpp"
 
 namespace headingd::test {
 namespace {
@@ -23,14 +24,15 @@ using nmea::SerialGpsCounters;
 using nmea::SerialGpsReader;
 using nmea::SerialGpsState;
 
-const std::filesystem::path kLogs{HEADINGD_GPSD_LOGS_DIR};
+// A capture of gpsd's corpus (../shared/data/gpsd-logs, else tests/data/gpsd-logs), announced.
+std::filesystem::path gpsdLog(const std::string& name) { return test_data::file(test_data::kGpsdLogs, name); }
 
 // ---------------------------------------------------------------------------------------
 
 class CaptureOverPty : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(CaptureOverPty, DeliversTheParsersFixesAndCounters) {
-  const auto wire = readWireBytes(kLogs / GetParam());
+  const auto wire = readWireBytes(gpsdLog(GetParam()));
   nmea::Counters want_counters;
   const auto want = referenceEpochs(wire, &want_counters);
   ASSERT_GE(want.size(), 5u) << "capture too short to show anything";
@@ -81,7 +83,7 @@ INSTANTIATE_TEST_SUITE_P(GpsdLogs, CaptureOverPty,
 // soon as the line goes quiet after it, stamped when its last sentence arrived.
 TEST(SerialGpsReader, RealLineRateDeliversEachEpochAtTheEndOfItsBurst) {
   // Three epochs of a 1 Hz receiver, paced as it sent them: burst, one second, burst.
-  const auto wire = readWireBytes(kLogs / "garmin48.log");
+  const auto wire = readWireBytes(gpsdLog("garmin48.log"));
   const auto want = referenceEpochs(wire);
   ASSERT_GE(want.size(), 3u);
   PtyPair pty;
@@ -136,7 +138,7 @@ TEST(SerialGpsReader, RealLineRateDeliversEachEpochAtTheEndOfItsBurst) {
 }
 
 TEST(SerialGpsReader, GarbageBetweenSentencesIsCountedAndChangesNoFix) {
-  const auto clean = readWireBytes(kLogs / "mt3339.log");
+  const auto clean = readWireBytes(gpsdLog("mt3339.log"));
   nmea::Counters want_counters;
   const auto want = referenceEpochs(clean, &want_counters);
 
@@ -191,7 +193,7 @@ TEST(SerialGpsReader, GarbageBetweenSentencesIsCountedAndChangesNoFix) {
 // configured with goes and the pty is closed; a new pty is created and the symlink points at
 // it again.
 TEST(SerialGpsReader, ReopensWhenTheDeviceComesBackBehindItsSymlink) {
-  const auto wire = readWireBytes(kLogs / "sirfstarv-nmea.log");
+  const auto wire = readWireBytes(gpsdLog("sirfstarv-nmea.log"));
   nmea::Counters want_counters;
   const auto want = referenceEpochs(wire, &want_counters);
   // Unplug between two epochs, halfway through: cut before the line starting epoch n/2.
@@ -258,7 +260,7 @@ TEST(SerialGpsReader, ReopensWhenTheDeviceComesBackBehindItsSymlink) {
 // udev re-points the symlink to a new device while the old one lingers without failing
 // reads: the periodic path check notices and switches.
 TEST(SerialGpsReader, FollowsASymlinkRepointedWhileTheOldDeviceStaysOpen) {
-  const auto wire = readWireBytes(kLogs / "bu353s4.log");
+  const auto wire = readWireBytes(gpsdLog("bu353s4.log"));
   const auto want = referenceEpochs(wire);
   TempDir dir;
   const auto link = dir.path() / "gps0";
@@ -280,7 +282,7 @@ TEST(SerialGpsReader, FollowsASymlinkRepointedWhileTheOldDeviceStaysOpen) {
 }
 
 TEST(SerialGpsReader, WaitsForADeviceThatDoesNotExistYet) {
-  const auto wire = readWireBytes(kLogs / "GPSmap-76S.log");
+  const auto wire = readWireBytes(gpsdLog("GPSmap-76S.log"));
   const auto want = referenceEpochs(wire);
   TempDir dir;
   const auto link = dir.path() / "gps0";
@@ -324,7 +326,7 @@ TEST(SerialGpsReader, APathThatIsNotATtyIsReportedAndRetriedWithBoundedBackoff) 
 }
 
 TEST(SerialGpsReader, StopClosesThePortAndDeliversTheEpochInProgress) {
-  const auto wire = readWireBytes(kLogs / "mt3339.log");
+  const auto wire = readWireBytes(gpsdLog("mt3339.log"));
   const auto want = referenceEpochs(wire);
   PtyPair pty;
   SerialGpsConfig config = testConfig(pty.slavePath());

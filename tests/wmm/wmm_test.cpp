@@ -16,6 +16,7 @@ namespace {
 
 using namespace headingd;
 using wmm_test::readFile;
+using wmm_test::referenceFile;
 using wmm_test::shippedModel;
 
 struct TestValue {
@@ -43,11 +44,12 @@ std::vector<TestValue> readTestValues(const std::string& path) {
   return rows;
 }
 
-TEST(Wmm2025, ShippedCoefficientsAreByteIdenticalToSharedData) {
+TEST(Wmm2025, ShippedCoefficientsAreByteIdenticalToTheReference) {
   const std::string shipped = readFile(HEADINGD_WMM_CONFIG_COF);
-  const std::string shared = readFile(HEADINGD_WMM_SHARED_DIR "/WMM2025.COF");
+  const std::string reference_path = referenceFile("WMM2025.COF");
+  const std::string reference = readFile(reference_path);
   ASSERT_FALSE(shipped.empty());
-  EXPECT_TRUE(shipped == shared) << HEADINGD_WMM_CONFIG_COF " differs from " HEADINGD_WMM_SHARED_DIR "/WMM2025.COF";
+  EXPECT_TRUE(shipped == reference) << HEADINGD_WMM_CONFIG_COF " differs from " << reference_path;
 }
 
 TEST(Wmm2025, ModelHeader) {
@@ -62,7 +64,7 @@ TEST(Wmm2025, ModelHeader) {
 // NOAA's acceptance criterion (data/wmm/README.md): every row, field components within
 // 0.1 nT and angles within 0.01 degree. The CSV's angles are rounded to 0.01 degree.
 TEST(Wmm2025, ReproducesEveryNoaaTestValue) {
-  const auto rows = readTestValues(HEADINGD_WMM_SHARED_DIR "/WMM2025_TEST_VALUES.csv");
+  const auto rows = readTestValues(referenceFile("WMM2025_TEST_VALUES.csv"));
   EXPECT_EQ(rows.size(), 100u);
   const auto& model = shippedModel();
   double worst_nT = 0.0, worst_deg = 0.0;

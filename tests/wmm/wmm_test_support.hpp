@@ -6,6 +6,7 @@
 #include <string>
 
 #include "headingd/core/wmm.hpp"
+#include "test_data.hpp"
 
 namespace headingd::wmm_test {
 
@@ -16,6 +17,9 @@ inline std::string readFile(const std::string& path) {
   text << in.rdbuf();
   return text.str();
 }
+
+// A file of NOAA's reference data (../shared/data/wmm, else tests/data/wmm), announced.
+inline std::string referenceFile(const std::string& name) { return test_data::file(test_data::kWmm, name).string(); }
 
 // The model as shipped (config/wmm/WMM2025.COF).
 inline const core::WorldMagneticModel& shippedModel() {

@@ -71,7 +71,7 @@ TEST(WmmTool, ReproducesNoaaTestPoint) {
 
 TEST(WmmTool, ExplicitCofFileGivesTheSameField) {
   const auto r = runTool("--lat 43 --lon 93 --alt-km 65 --date 2025-01-01 --cof " +
-                         shellQuote(HEADINGD_WMM_SHARED_DIR "/WMM2025.COF"));
+                         shellQuote(headingd::wmm_test::referenceFile("WMM2025.COF")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NEAR(jsonNumber(r.out, "X_nT"), 24299.852822, 0.1) << r.out;
 }
@@ -112,7 +112,7 @@ TEST(WmmTool, UnreadableOrMalformedCofExitsWithOne) {
   EXPECT_NE(missing.err.find("/nonexistent/WMM.COF"), std::string::npos) << missing.err;
   // A real file that is not a COF: the message names the file and line.
   const auto bad = runTool("--lat 43 --lon 93 --alt-km 65 --date 2025-01-01 --cof " +
-                           shellQuote(HEADINGD_WMM_SHARED_DIR "/WMM2025_TEST_VALUES.csv"));
+                           shellQuote(headingd::wmm_test::referenceFile("WMM2025_TEST_VALUES.csv")));
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("WMM2025_TEST_VALUES.csv:1:"), std::string::npos) << bad.err;
 }

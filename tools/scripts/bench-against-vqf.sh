@@ -10,10 +10,14 @@
 #   BUILD_DIR    headingd's build folder with tests/headingd-bench (default: build)
 #   RUNS         pairs of runs (default 9)
 # VQF is compiled with the flags of headingd's default build (-O2, RelWithDebInfo).
+# The trial is headingd-bench's: 01 of ../shared/data/broad, or without ../shared trial 05 of
+# the repository's tests/data/broad (cmake/test_data.cmake, tests/CMakeLists.txt).
 set -euo pipefail
 vqf_dir=$1 build=${2:-build} runs=${3:-9}
 here=$(cd "$(dirname "$0")/../.." && pwd)
 trial="$here/../shared/data/broad/01_undisturbed_slow_rotation_A.csv.gz"
+[[ -d $here/../shared/data/broad ]] || trial="$here/tests/data/broad/05_undisturbed_slow_rotation_with_breaks_B.csv.gz"
+echo "trial: $trial"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 g++ -std=c++17 -O2 -g -DNDEBUG -DHEADINGD_BENCH_BROAD_TRIAL="\"$trial\"" -I"$vqf_dir" \
