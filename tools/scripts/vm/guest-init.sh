@@ -28,7 +28,7 @@ boot_systemd() {
   etc_units=$r/etc/systemd/system
   mkdir -p $etc_units $r/etc/systemd/system-generators $r/run/headingd-vm-init
   cp /systemd/headingd-vm.target /systemd/headingd-vm-job.service $etc_units/ || fail "copy of the job's units"
-  cp /systemd/run-job.sh $r/run/headingd-vm-init/ || fail "copy of run-job.sh"
+  cp /systemd/run-job.sh /systemd/virtio-ports.sh $r/run/headingd-vm-init/ || fail "copy of run-job.sh"
   sed 's/#.*//' /systemd/masked-units | while read -r unit; do
     [ -n "$unit" ] && ln -sf /dev/null "$etc_units/$unit"
   done
@@ -112,16 +112,9 @@ for can_if in vcan0 vcan1; do
   ip link set $can_if up || fail "ip link set $can_if up"
 done
 
-# The job's stdout and stderr: virtio-serial ports named by vm-run.sh (sysfs gives the names).
-out=/dev/null
-err=/dev/null
-for port in /sys/class/virtio-ports/*; do
-  [ -e "$port/name" ] || continue
-  case "$(cat "$port/name")" in
-    stdout) out=/dev/${port##*/} ;;
-    stderr) err=/dev/${port##*/} ;;
-  esac
-done
+# The job's stdout and stderr: virtio-serial ports named by vm-run.sh.
+. /systemd/virtio-ports.sh
+find_job_ports
 [ "$out" != /dev/null ] || fail "no virtio-serial port named stdout"
 
 if grep -qw 'headingd_vm.init=systemd' /proc/cmdline; then

@@ -4,15 +4,8 @@
 # COMMAND) with its stdout and stderr on the two virtio-serial ports, as guest-init.sh does
 # in the default mode, and writes COMMAND's exit status into the job share. The unit powers
 # the guest off when this script ends.
-out=/dev/null
-err=/dev/null
-for port in /sys/class/virtio-ports/*; do
-  [ -e "$port/name" ] || continue
-  case "$(cat "$port/name")" in
-    stdout) out=/dev/${port##*/} ;;
-    stderr) err=/dev/${port##*/} ;;
-  esac
-done
+. /run/headingd-vm-init/virtio-ports.sh
+find_job_ports
 if [ "$out" = /dev/null ]; then
   echo "vm-job: SETUP FAILED: no virtio-serial port named stdout" >&2
   exit 1
