@@ -1,9 +1,11 @@
 #!/bin/sh
-# Runs a command as an unprivileged user: as is when not root, else as nobody (uid/gid 65534,
-# no supplementary groups, no capabilities) through util-linux's setpriv. For tests of what a
-# process without CAP_SYS_ADMIN sees (a tty in exclusive mode refuses it with EBUSY).
+# Runs a command without privileges: as is when not root, else as root with every capability
+# dropped (util-linux's setpriv: empty bounding, inheritable and ambient sets). What a tty in
+# exclusive mode checks is CAP_SYS_ADMIN, not the uid, so this takes the path an unprivileged
+# headingd (the unit's user) takes: open() fails with EBUSY. The uid stays 0 on purpose: the
+# checkout may sit where another user cannot read it (/root, a mktemp -d folder).
 set -eu
 if [ "$(id -u)" -ne 0 ]; then
   exec "$@"
 fi
-exec setpriv --reuid=65534 --regid=65534 --clear-groups --inh-caps=-all --bounding-set=-all -- "$@"
+exec setpriv --inh-caps=-all --ambient-caps=-all --bounding-set=-all -- "$@"

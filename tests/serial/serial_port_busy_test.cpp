@@ -4,9 +4,10 @@
 // the port and delivers the parser's fixes, bit for bit.
 //
 // How the holder takes the port is the parameter: TIOCEXCL alone (what gpsd does), flock
-// alone (picocom), both. As root, open() ignores TIOCEXCL and the reader sees gpsd's mode
-// with TIOCGEXCL; unprivileged, open() fails with EBUSY. CTest runs this file both ways
-// (serial.busy_port_unprivileged drops root with setpriv), so both paths are exercised.
+// alone (picocom), both. With CAP_SYS_ADMIN (root), open() ignores TIOCEXCL and the reader
+// sees gpsd's mode with TIOCGEXCL; without it, open() fails with EBUSY. CTest runs this file
+// both ways (serial.busy_port_unprivileged drops every capability with setpriv), so both
+// paths are exercised.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/ioctl.h>
@@ -14,6 +15,8 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <fstream>
+#include <string>
 
 #include "test_data.hpp"
 #include "headingd/nmea/serial_gps_reader.hpp"
@@ -29,10 +32,20 @@ namespace {
 using nmea::SerialGpsState;
 
 
+// Whether this process may open a tty in exclusive mode (bit 21 of CapEff, CAP_SYS_ADMIN).
+bool hasCapSysAdmin() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("CapEff:", 0) == 0) return (std::stoull(line.substr(7), nullptr, 16) >> 21) & 1u;
+  }
+  return false;
+}
+
 class SerialPortBusy : public ::testing::TestWithParam<HoldWith> {};
 
 TEST_P(SerialPortBusy, HolderIsNamedCountedAndNotReadFromThenThePortIsOurs) {
-  std::printf("running as uid %d\n", static_cast<int>(::geteuid()));
+  std::printf("running as uid %d, %s\n", static_cast<int>(::geteuid()),
+              hasCapSysAdmin() ? "with CAP_SYS_ADMIN" : "without CAP_SYS_ADMIN");
   const auto wire = readWireBytes(test_data::file(test_data::kGpsdLogs, "mt3339.log"));
   nmea::Counters want_counters;
   const auto want = referenceEpochs(wire, &want_counters);
