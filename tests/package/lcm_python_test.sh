@@ -11,24 +11,7 @@ headingd=$1 python=$2 lcm_python_dir=$3 config_dir=$4
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-cat > "$work/play.toml" <<TOML
-[daemon]
-wmm = "$config_dir/wmm/WMM2025.COF"
-[lcm]
-url = "file://$work/out.lcmlog?mode=w"
-[rings]
-imu_capacity = 65536
-[playback]
-speed = 1000.0
-at_end = "exit"
-[candump_log]
-enabled = true
-path = "$config_dir/demo/sim-urban-walk-can.log.gz"
-can_config = "$config_dir/can-headingd.toml"
-[nmea_log]
-enabled = true
-path = "$config_dir/demo/sim-urban-walk.nmea"
-TOML
+"$(dirname "${BASH_SOURCE[0]}")/demo_playback_toml.sh" "$config_dir" "$work/out.lcmlog" >"$work/play.toml"
 "$headingd" --config "$work/play.toml" --log-level warn
 
 PYTHONPATH="$lcm_python_dir" "$python" "$(dirname "${BASH_SOURCE[0]}")/decode_lcm_log.py" "$work/out.lcmlog"

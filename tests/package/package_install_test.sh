@@ -99,24 +99,7 @@ check "python3 imports headingd from /usr/lib/python3/dist-packages and decodes"
 exit $fail
 INSIDE
 cp "$work/inside.sh" "$root/work/inside.sh"
-cat > "$root/tmp/play.toml" <<TOML
-[daemon]
-wmm = "/usr/share/headingd/wmm/WMM2025.COF"
-[lcm]
-url = "file:///tmp/out.lcmlog?mode=w"
-[rings]
-imu_capacity = 65536
-[playback]
-speed = 1000.0
-at_end = "exit"
-[candump_log]
-enabled = true
-path = "/usr/share/headingd/demo/sim-urban-walk-can.log.gz"
-can_config = "/usr/share/headingd/can-headingd.toml"
-[nmea_log]
-enabled = true
-path = "/usr/share/headingd/demo/sim-urban-walk.nmea"
-TOML
+"$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")/demo_playback_toml.sh" /usr/share/headingd /tmp/out.lcmlog >"$root/tmp/play.toml"
 unshare -m --propagation private bash -c '
   set -e
   root=$1

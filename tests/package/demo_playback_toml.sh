@@ -1,0 +1,24 @@
+#!/bin/sh
+# Prints a daemon configuration that plays the demo capture (candump and NMEA logs) as fast as
+# it can into an LCM log file and exits: the package tests' way to make real LCM traffic.
+#   demo_playback_toml.sh DATA_DIR LCM_LOG   (DATA_DIR: config/ of a checkout or /usr/share/headingd)
+set -eu
+data=$1 log=$2
+cat <<TOML
+[daemon]
+wmm = "$data/wmm/WMM2025.COF"
+[lcm]
+url = "file://$log?mode=w"
+[rings]
+imu_capacity = 65536
+[playback]
+speed = 1000.0
+at_end = "exit"
+[candump_log]
+enabled = true
+path = "$data/demo/sim-urban-walk-can.log.gz"
+can_config = "$data/can-headingd.toml"
+[nmea_log]
+enabled = true
+path = "$data/demo/sim-urban-walk.nmea"
+TOML
