@@ -11,7 +11,7 @@
 
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/daemon/clocks.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 #include "headingd/daemon/realtime.hpp"
 
 namespace headingd::daemon {
@@ -20,7 +20,7 @@ namespace {
 // [daemon] calibration: none when none is configured; a bad file throws (start-up stops).
 core::CalibratedImuStream loadCalibration(const std::string& path) {
   if (path.empty()) return core::CalibratedImuStream{};
-  return core::CalibratedImuStream(core::parseImuCalibration(replay::readMaybeGzipFile(path), path));
+  return core::CalibratedImuStream(core::parseImuCalibration(files::readMaybeGzipFile(path), path));
 }
 
 

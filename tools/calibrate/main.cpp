@@ -26,8 +26,8 @@
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/core/wmm.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 namespace {
 
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "headingd-calibrate: --date: expected YYYY-MM-DD, got '%s'\n", date.c_str());
         return 2;
       }
-      const core::WorldMagneticModel wmm(core::parseWmmCoefficients(replay::readMaybeGzipFile(wmm_path), wmm_path));
+      const core::WorldMagneticModel wmm(core::parseWmmCoefficients(files::readMaybeGzipFile(wmm_path), wmm_path));
       const auto e = wmm.field({*lat, *lon, 0.0}, core::decimalYear(y, m, d));
       field.norm_uT = e.f_nT / 1000.0;
       field.dip_rad = e.inclination_deg * kDeg;
@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
       field.detail = wmm.modelName() + describe(" at %.4f N %.4f E on %s", *lat, *lon, date);
     }
     progress("reading %s", imu_csv.c_str());
-    all = replay::readImuCsv(imu_csv);
+    all = files::readImuCsv(imu_csv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-calibrate: %s\n", e.what());
     return 1;

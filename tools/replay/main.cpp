@@ -15,9 +15,9 @@
 #include "headingd/core/mag_calibration_fit.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/core/params_toml.hpp"
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/nmea_epochs.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/nmea_epochs.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 namespace {
 
@@ -25,7 +25,7 @@ using namespace headingd;
 
 core::EstimatorParams loadParams(const std::string& path) {
   if (path.empty()) return {};
-  return core::parseEstimatorParams(replay::readMaybeGzipFile(path), path);
+  return core::parseEstimatorParams(files::readMaybeGzipFile(path), path);
 }
 
 void printCounters(const core::EstimatorCounters& c, std::size_t rows, double seconds) {
@@ -74,19 +74,19 @@ int main(int argc, char** argv) {
 
   try {
     const core::EstimatorParams params = loadParams(config);
-    auto samples = replay::readImuCsv(imu_csv);
+    auto samples = files::readImuCsv(imu_csv);
     core::CalibratedImuStream calibration;
     if (!calib_path.empty()) {
       calibration = core::CalibratedImuStream(
-          core::parseImuCalibration(replay::readMaybeGzipFile(calib_path), calib_path));
+          core::parseImuCalibration(files::readMaybeGzipFile(calib_path), calib_path));
       for (auto& s : samples) s = calibration.apply(s);
     }
     const bool with_gps = !nmea_path.empty();
-    replay::NmeaEpochs gps;
+    files::NmeaEpochs gps;
     std::optional<core::WorldMagneticModel> wmm;
     if (with_gps) {
-      gps = replay::readNmeaEpochs(nmea_path, nmea_first_epoch_t);
-      wmm.emplace(core::parseWmmCoefficients(replay::readMaybeGzipFile(wmm_path), wmm_path));
+      gps = files::readNmeaEpochs(nmea_path, nmea_first_epoch_t);
+      wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(wmm_path), wmm_path));
     }
     core::HeadingPipeline pipeline(params, wmm ? &*wmm : nullptr);
 
