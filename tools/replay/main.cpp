@@ -12,6 +12,7 @@
 
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
+#include "headingd/core/imu_then_gps_order.hpp"
 #include "headingd/core/mag_calibration_fit.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/core/params_toml.hpp"
@@ -28,21 +29,13 @@ core::EstimatorParams loadParams(const std::string& path) {
   return core::parseEstimatorParams(files::readMaybeGzipFile(path), path);
 }
 
+// One JSON line: the row count, the estimator's counters, the time per sample.
 void printCounters(const core::EstimatorCounters& c, std::size_t rows, double seconds) {
-  const auto& s = c.samples;
-  std::fprintf(stderr,
-               "{\"rows\":%zu,\"accepted\":%llu,\"gaps\":%llu,\"clock_jumps\":%llu,\"duplicate_time\":%llu,"
-               "\"backwards_time\":%llu,\"non_finite\":%llu,\"non_finite_mag\":%llu,\"out_of_range\":%llu,"
-               "\"out_of_range_mag\":%llu,\"bias_still_blocks\":%llu,\"mag_no_heading\":%llu,\"mag_disturbed\":%llu,"
-               "\"mag_heading_restores\":%llu,\"state_recoveries\":%llu,\"estimator_ns_per_sample\":%.1f}\n",
-               rows, static_cast<unsigned long long>(s.accepted), static_cast<unsigned long long>(s.gaps),
-               static_cast<unsigned long long>(s.clock_jumps), static_cast<unsigned long long>(s.duplicate_time),
-               static_cast<unsigned long long>(s.backwards_time), static_cast<unsigned long long>(s.non_finite),
-               static_cast<unsigned long long>(s.non_finite_mag), static_cast<unsigned long long>(s.out_of_range),
-               static_cast<unsigned long long>(s.out_of_range_mag), static_cast<unsigned long long>(c.bias_still_blocks),
-               static_cast<unsigned long long>(c.mag_no_heading), static_cast<unsigned long long>(c.mag_disturbed),
-               static_cast<unsigned long long>(c.mag_heading_restores),
-               static_cast<unsigned long long>(c.state_recoveries), rows ? seconds * 1e9 / rows : 0.0);
+  std::fprintf(stderr, "{\"rows\":%zu", rows);
+  core::forEachCounter(c, [](const char* name, std::uint64_t v) {
+    std::fprintf(stderr, ",\"%s\":%llu", name, static_cast<unsigned long long>(v));
+  });
+  std::fprintf(stderr, ",\"estimator_ns_per_sample\":%.1f}\n", rows ? seconds * 1e9 / rows : 0.0);
 }
 
 }  // namespace
@@ -91,15 +84,16 @@ int main(int argc, char** argv) {
     core::HeadingPipeline pipeline(params, wmm ? &*wmm : nullptr);
 
     // Estimates are kept in memory and written afterwards, so the timing below is the
-    // estimator's alone. GPS epochs go in after the IMU sample of the same or an earlier time.
+    // estimator's alone. Each GPS epoch goes in after the first IMU sample at or after its time.
     std::vector<core::HeadingOutput> estimates(samples.size());
-    std::size_t next_epoch = 0;
+    core::ImuThenGpsOrder<core::GpsObservation> order;
+    order.reserve(gps.epochs.size());
+    for (const core::GpsObservation& epoch : gps.epochs) order.pushGps(epoch);
+    const auto processGps = [&pipeline](const core::GpsObservation& epoch) { pipeline.processGps(epoch); };
     const auto start = std::chrono::steady_clock::now();
     for (std::size_t i = 0; i < samples.size(); ++i) {
       pipeline.process(samples[i]);
-      while (next_epoch < gps.epochs.size() && gps.epochs[next_epoch].t_ns <= samples[i].t_ns) {
-        pipeline.processGps(gps.epochs[next_epoch++]);
-      }
+      order.afterImu(samples[i].t_ns, processGps);
       estimates[i] = pipeline.output();  // a rejected sample repeats the last estimate
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
