@@ -3,8 +3,13 @@
 // keeping each message with its CLOCK_MONOTONIC receive time.
 #include <atomic>
 #include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <mutex>
+#include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,11 +32,21 @@ class LcmCollector {
  public:
   explicit LcmCollector(const std::string& url) : lcm_(url) {
     if (!lcm_.good()) throw std::runtime_error("LCM subscriber: cannot open " + url);
-    lcm_.subscribe("HEADING", &LcmCollector::onHeading, this);
-    lcm_.subscribe("ATTITUDE", &LcmCollector::onAttitude, this);
-    lcm_.subscribe("IMU", &LcmCollector::onImu, this);
-    lcm_.subscribe("GPS", &LcmCollector::onGps, this);
-    lcm_.subscribe("STATUS", &LcmCollector::onStatus, this);
+    // Room for a BROAD trial's IMU messages and minutes of estimates: a vector that grows
+    // copies everything it holds, and the handler falls behind meanwhile.
+    heading_.reserve(1 << 14);
+    attitude_.reserve(1 << 14);
+    imu_.reserve(1 << 17);
+    // LCM keeps at most 30 received messages a subscription by default and drops the rest
+    // while the handler is behind: 10 ms of IMU messages at 10x real time. This subscriber
+    // must see everything the daemon sent, so its queues are as deep as a whole trial.
+    for (lcm::Subscription* s : {lcm_.subscribe("HEADING", &LcmCollector::onHeading, this),
+                                 lcm_.subscribe("ATTITUDE", &LcmCollector::onAttitude, this),
+                                 lcm_.subscribe("IMU", &LcmCollector::onImu, this),
+                                 lcm_.subscribe("GPS", &LcmCollector::onGps, this),
+                                 lcm_.subscribe("STATUS", &LcmCollector::onStatus, this)}) {
+      s->setQueueCapacity(1 << 17);
+    }
     thread_ = std::thread([this] {
       while (!stop_.load()) lcm_.handleTimeout(20);
     });
@@ -40,6 +55,31 @@ class LcmCollector {
   void stop() {
     stop_.store(true);
     if (thread_.joinable()) thread_.join();
+  }
+
+  // Datagrams the kernel dropped because a UDP socket of this process had a full receive
+  // buffer (the "drops" column of /proc/self/net/udp for the sockets this process holds):
+  // what this subscriber lost when it was not scheduled in time, as opposed to what the
+  // daemon never sent.
+  static std::uint64_t kernelReceiveDrops() {
+    std::set<std::string> inodes;
+    for (const auto& fd : std::filesystem::directory_iterator("/proc/self/fd")) {
+      std::error_code ec;
+      const std::string target = std::filesystem::read_symlink(fd.path(), ec).string();
+      if (!ec && target.rfind("socket:[", 0) == 0) inodes.insert(target.substr(8, target.size() - 9));
+    }
+    std::ifstream udp("/proc/self/net/udp");
+    std::string line;
+    std::getline(udp, line);  // header
+    std::uint64_t drops = 0;
+    while (std::getline(udp, line)) {
+      std::istringstream fields(line);
+      std::vector<std::string> f;
+      for (std::string x; fields >> x;) f.push_back(x);
+      // sl local rem st tx:rx tr:when retrnsmt uid timeout inode ref pointer drops
+      if (f.size() >= 13 && inodes.count(f[9]) != 0) drops += std::stoull(f[12]);
+    }
+    return drops;
   }
 
   // Copies, safe while receiving.
