@@ -69,7 +69,7 @@ class Estimator {
   const AttitudeEkf& ekf() const { return ekf_; }
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
-  // strength and dip tests of the disturbance detection (Henriksson §4.2, issue 4).
+  // strength and dip tests of the disturbance detection (Henriksson §4.2).
   void setReferenceField(double field_norm_uT, double inclination_rad) {
     mag_disturbance_.setReference(field_norm_uT, inclination_rad);
   }
