@@ -190,7 +190,6 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
   const double before = mag_disturbed_seconds_;
   mag_disturbed_seconds_ = out_.mag_disturbed ? mag_disturbed_seconds_ + dt_s : 0.0;
   const bool onset = before < p_.mag_restore_confirm_s && mag_disturbed_seconds_ >= p_.mag_restore_confirm_s;
-  mag_was_disturbed_ = out_.mag_disturbed;
   if (out_.mag_disturbed) {
     ++mag_disturbed_;
     out_.mag_innovation_rad = m.innovation_rad;

@@ -55,6 +55,8 @@ struct EstimatorCounters {
   std::uint64_t state_recoveries = 0;    // a non-finite state was replaced (never expected)
 };
 
+// A value: a copy carries on independently from the same state (its parts hold their own
+// copies of the parameters, never references into this object).
 class Estimator {
  public:
   explicit Estimator(const EstimatorParams& params = {});
@@ -102,7 +104,6 @@ class Estimator {
   std::uint64_t mag_no_heading_ = 0;
   std::uint64_t mag_disturbed_ = 0;
   std::uint64_t mag_heading_restores_ = 0;
-  bool mag_was_disturbed_ = false;
   double mag_disturbed_seconds_ = 0.0;
   std::uint64_t state_recoveries_ = 0;
 };

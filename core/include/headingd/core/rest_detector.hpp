@@ -85,7 +85,7 @@ class RestDetector {
   // fit one rotation.
   bool measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) const;
 
-  const EstimatorParams& p_;
+  EstimatorParams p_;  // a copy: the owner may be copied or moved (gyro_bias_estimator.hpp)
   SteadyVector gyro_;
   SteadyVector accel_;
   SteadyVector mag_;
