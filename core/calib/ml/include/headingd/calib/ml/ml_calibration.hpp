@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "headingd/calib/ml_initial_estimate.hpp"
-#include "headingd/calib/ml_likelihood.hpp"
-#include "headingd/calib/ml_parameters.hpp"
+#include "headingd/calib/ml/ml_initial_estimate.hpp"
+#include "headingd/calib/ml/ml_likelihood.hpp"
+#include "headingd/calib/ml/ml_parameters.hpp"
 
 namespace headingd::calib {
 
