@@ -1,100 +1,15 @@
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/core/toml_document.hpp"
+#include "headingd/core/toml_table_reader.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <set>
 #include <sstream>
 #include <toml++/toml.h>
 
 namespace headingd::core {
 namespace {
-
-std::string where(const std::string& source, const toml::node& node) {
-  return source + ":" + std::to_string(node.source().begin.line);
-}
-
-// Reads the keys of one table, checking that each is known and of the expected form.
-class TableReader {
- public:
-  TableReader(const toml::table& table, std::string source, std::string name, std::set<std::string> known)
-      : table_(table), source_(std::move(source)), name_(std::move(name)) {
-    for (auto&& [key, node] : table) {
-      if (known.count(std::string(key.str())) == 0) {
-        std::string list;
-        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-        throw ConfigError(where(source_, node) + ": [" + name_ + "] " + std::string(key.str()) +
-                          ": unknown key (expected one of " + list + ")");
-      }
-    }
-  }
-
-  std::string at(const char* key) const { return where(source_, *table_.get(key)) + ": [" + name_ + "] " + key; }
-  bool has(const char* key) const { return table_.contains(key); }
-
-  double number(const char* key, const char* expected) const {
-    const toml::node& n = *table_.get(key);
-    if (!(n.is_floating_point() || n.is_integer())) throw ConfigError(at(key) + ": expected " + expected);
-    const double v = *n.value<double>();
-    if (!std::isfinite(v)) throw ConfigError(at(key) + ": expected a finite number");
-    return v;
-  }
-  std::int64_t integer(const char* key) const {
-    const toml::node& n = *table_.get(key);
-    if (!n.is_integer()) throw ConfigError(at(key) + ": expected an integer");
-    return *n.value<std::int64_t>();
-  }
-  std::string text(const char* key) const {
-    const toml::node& n = *table_.get(key);
-    if (!n.is_string()) throw ConfigError(at(key) + ": expected a string");
-    return std::string(*n.value<std::string_view>());
-  }
-  Vec3 vec3(const char* key, const char* unit) const {
-    const toml::array* a = table_.get(key)->as_array();
-    const std::string expected = std::string(": expected an array of 3 numbers in ") + unit;
-    if (a == nullptr || a->size() != 3) throw ConfigError(at(key) + expected);
-    Vec3 v;
-    for (int i = 0; i < 3; ++i) {
-      const toml::node& e = *a->get(static_cast<std::size_t>(i));
-      if (!(e.is_floating_point() || e.is_integer()) || !std::isfinite(*e.value<double>())) {
-        throw ConfigError(at(key) + expected);
-      }
-      v(i) = *e.value<double>();
-    }
-    return v;
-  }
-  Mat3 mat3(const char* key) const {
-    const toml::array* rows = table_.get(key)->as_array();
-    const std::string expected = ": expected a 3x3 matrix as a list of 3 rows of 3 numbers";
-    if (rows == nullptr || rows->size() != 3) throw ConfigError(at(key) + expected);
-    Mat3 m;
-    for (int r = 0; r < 3; ++r) {
-      const toml::array* row = rows->get(static_cast<std::size_t>(r))->as_array();
-      if (row == nullptr || row->size() != 3) throw ConfigError(at(key) + expected);
-      for (int c = 0; c < 3; ++c) {
-        const toml::node& e = *row->get(static_cast<std::size_t>(c));
-        if (!(e.is_floating_point() || e.is_integer()) || !std::isfinite(*e.value<double>())) {
-          throw ConfigError(at(key) + expected);
-        }
-        m(r, c) = *e.value<double>();
-      }
-    }
-    return m;
-  }
-
- private:
-  const toml::table& table_;
-  std::string source_;
-  std::string name_;
-};
-
-const toml::table* subTable(const toml::table& doc, const char* name, const std::string& source) {
-  const toml::node* n = doc.get(name);
-  if (n == nullptr) return nullptr;
-  if (!n->is_table()) throw ConfigError(where(source, *n) + ": '" + name + "' must be a table");
-  return n->as_table();
-}
 
 std::string num(double v) {
   char buf[40];
@@ -123,86 +38,69 @@ std::string quoted(const std::string& s) {
 }  // namespace
 
 ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string& source) {
-  toml::table doc = parseTomlDocument(toml_text, source);
-  for (auto&& [key, node] : doc) {
-    const std::string k(key.str());
-    if (k != "calibration" && k != "magnetometer" && k != "gyroscope" && k != "accelerometer" && k != "quality") {
-      throw ConfigError(where(source, node) + ": unknown table '" + k +
-                        "' (expected calibration, magnetometer, gyroscope, accelerometer, quality)");
-    }
-  }
+  const toml::table doc = parseTomlDocument(toml_text, source);
+  rejectUnknownTables(doc, source, {"calibration", "magnetometer", "gyroscope", "accelerometer", "quality"});
   ImuCalibration c;
-  if (const toml::table* t = subTable(doc, "calibration", source)) {
-    const TableReader r(*t, source, "calibration", {"method", "source_file", "sample_range", "created"});
-    if (r.has("method")) c.provenance.method = r.text("method");
-    if (r.has("source_file")) c.provenance.source_file = r.text("source_file");
-    if (r.has("created")) c.provenance.created = r.text("created");
-    if (r.has("sample_range")) {
-      const toml::array* a = t->get("sample_range")->as_array();
-      if (a == nullptr || a->size() != 2 || !a->get(0)->is_integer() || !a->get(1)->is_integer() ||
-          *a->get(0)->value<std::int64_t>() > *a->get(1)->value<std::int64_t>() || *a->get(0)->value<std::int64_t>() < 0) {
-        throw ConfigError(r.at("sample_range") + ": expected [first, end) as two integers, 0 <= first <= end");
-      }
-      c.provenance.first_sample = *a->get(0)->value<std::int64_t>();
-      c.provenance.end_sample = *a->get(1)->value<std::int64_t>();
+  TomlTableReader calibration(tableOf(doc, "calibration", source), source, "calibration");
+  c.provenance.method = calibration.string("method", c.provenance.method);
+  c.provenance.source_file = calibration.string("source_file", c.provenance.source_file);
+  c.provenance.created = calibration.string("created", c.provenance.created);
+  if (const toml::node* range = calibration.node("sample_range")) {
+    const toml::array* a = range->as_array();
+    if (a == nullptr || a->size() != 2 || !a->get(0)->is_integer() || !a->get(1)->is_integer() ||
+        *a->get(0)->value<std::int64_t>() > *a->get(1)->value<std::int64_t>() || *a->get(0)->value<std::int64_t>() < 0) {
+      calibration.fail("sample_range", "expected [first, end) as two integers, 0 <= first <= end");
     }
+    c.provenance.first_sample = *a->get(0)->value<std::int64_t>();
+    c.provenance.end_sample = *a->get(1)->value<std::int64_t>();
   }
-  if (const toml::table* t = subTable(doc, "magnetometer", source)) {
-    const TableReader r(*t, source, "magnetometer",
-                        {"D", "offset_uT", "field_norm_uT", "field_norm_source", "field_norm_detail", "dip_deg",
-                         "noise_sigma_uT"});
-    if (r.has("D")) {
-      c.mag.D = r.mat3("D");
-      const double size = c.mag.D.norm();
-      if (!(std::abs(c.mag.D.determinant()) > 1e-9 * size * size * size)) {
-        throw ConfigError(r.at("D") + ": expected an invertible matrix (this one is singular)");
-      }
-    }
-    if (r.has("offset_uT")) c.mag.offset_uT = r.vec3("offset_uT", "uT");
-    if (r.has("field_norm_uT")) {
-      c.mag.field_norm_uT = r.number("field_norm_uT", "a number in uT");
-      if (!(c.mag.field_norm_uT > 0.0 && c.mag.field_norm_uT < 1000.0)) {
-        throw ConfigError(r.at("field_norm_uT") + ": expected 0 < value < 1000 uT");
-      }
-    }
-    if (r.has("field_norm_source")) {
-      const std::string s = r.text("field_norm_source");
-      if (s == "wmm") c.mag.field_norm_source = FieldNormSource::kWmm;
-      else if (s == "argument") c.mag.field_norm_source = FieldNormSource::kArgument;
-      else if (s == "data") c.mag.field_norm_source = FieldNormSource::kData;
-      else throw ConfigError(r.at("field_norm_source") + ": expected \"wmm\", \"argument\" or \"data\", got \"" + s + "\"");
-    }
-    if (r.has("field_norm_detail")) c.mag.field_norm_detail = r.text("field_norm_detail");
-    if (r.has("dip_deg")) {
-      const double dip = r.number("dip_deg", "a number in degrees");
-      if (std::abs(dip) > 90.0) throw ConfigError(r.at("dip_deg") + ": expected -90 .. 90 degrees");
-      c.mag.dip_rad = dip * std::numbers::pi / 180.0;
-    }
-    if (r.has("noise_sigma_uT")) c.mag.noise_sigma_uT = r.vec3("noise_sigma_uT", "uT");
+  calibration.rejectUnknownKeys();
+
+  TomlTableReader mag(tableOf(doc, "magnetometer", source), source, "magnetometer");
+  c.mag.D = mag.mat3("D", c.mag.D);
+  const double size = c.mag.D.norm();
+  if (!(std::abs(c.mag.D.determinant()) > 1e-9 * size * size * size)) {
+    mag.fail("D", "expected an invertible matrix (this one is singular)");
   }
-  const auto scaleOf = [](const TableReader& r, const char* key) {
-    const Vec3 s = r.vec3(key, "1 (unitless)");
-    if (s.minCoeff() <= 0.0) throw ConfigError(r.at(key) + ": expected positive scale factors");
+  c.mag.offset_uT = mag.vec3("offset_uT", c.mag.offset_uT, "uT");
+  if (mag.has("field_norm_uT")) {
+    c.mag.field_norm_uT = mag.finite("field_norm_uT", 0.0, "uT");
+    if (!(c.mag.field_norm_uT > 0.0 && c.mag.field_norm_uT < 1000.0)) mag.fail("field_norm_uT", "expected 0 < value < 1000 uT");
+  }
+  if (mag.has("field_norm_source")) {
+    const std::string s = mag.string("field_norm_source", "");
+    if (s == "wmm") c.mag.field_norm_source = FieldNormSource::kWmm;
+    else if (s == "argument") c.mag.field_norm_source = FieldNormSource::kArgument;
+    else if (s == "data") c.mag.field_norm_source = FieldNormSource::kData;
+    else mag.fail("field_norm_source", "expected \"wmm\", \"argument\" or \"data\", got \"" + s + "\"");
+  }
+  c.mag.field_norm_detail = mag.string("field_norm_detail", c.mag.field_norm_detail);
+  if (mag.has("dip_deg")) c.mag.dip_rad = mag.number("dip_deg", 0.0, -90.0, 90.0, "degrees") * std::numbers::pi / 180.0;
+  if (mag.has("noise_sigma_uT")) c.mag.noise_sigma_uT = mag.vec3("noise_sigma_uT", Vec3::Zero(), "uT");
+  mag.rejectUnknownKeys();
+
+  const auto scaleOf = [](TomlTableReader& r, const Vec3& fallback) {
+    const Vec3 s = r.vec3("scale", fallback, "1 (unitless)");
+    if (s.minCoeff() <= 0.0) r.fail("scale", "expected positive scale factors");
     return s;
   };
-  if (const toml::table* t = subTable(doc, "gyroscope", source)) {
-    const TableReader r(*t, source, "gyroscope", {"bias_rad_s", "scale", "noise_sigma_rad_s"});
-    if (r.has("bias_rad_s")) c.gyro.bias_rad_s = r.vec3("bias_rad_s", "rad/s");
-    if (r.has("scale")) c.gyro.scale = scaleOf(r, "scale");
-    if (r.has("noise_sigma_rad_s")) c.gyro.noise_sigma_rad_s = r.vec3("noise_sigma_rad_s", "rad/s");
-  }
-  if (const toml::table* t = subTable(doc, "accelerometer", source)) {
-    const TableReader r(*t, source, "accelerometer", {"bias_m_s2", "scale", "noise_sigma_m_s2"});
-    if (r.has("bias_m_s2")) c.accel.bias_m_s2 = r.vec3("bias_m_s2", "m/s^2");
-    if (r.has("scale")) c.accel.scale = scaleOf(r, "scale");
-    if (r.has("noise_sigma_m_s2")) c.accel.noise_sigma_m_s2 = r.vec3("noise_sigma_m_s2", "m/s^2");
-  }
-  if (const toml::table* t = subTable(doc, "quality", source)) {
-    const TableReader r(*t, source, "quality", {"residual_rms_uT", "coverage", "condition_number"});
-    if (r.has("residual_rms_uT")) c.provenance.residual_rms_uT = r.number("residual_rms_uT", "a number in uT");
-    if (r.has("coverage")) c.provenance.coverage = r.number("coverage", "a fraction 0 .. 1");
-    if (r.has("condition_number")) c.provenance.condition_number = r.number("condition_number", "a number");
-  }
+  TomlTableReader gyro(tableOf(doc, "gyroscope", source), source, "gyroscope");
+  c.gyro.bias_rad_s = gyro.vec3("bias_rad_s", c.gyro.bias_rad_s, "rad/s");
+  c.gyro.scale = scaleOf(gyro, c.gyro.scale);
+  if (gyro.has("noise_sigma_rad_s")) c.gyro.noise_sigma_rad_s = gyro.vec3("noise_sigma_rad_s", Vec3::Zero(), "rad/s");
+  gyro.rejectUnknownKeys();
+
+  TomlTableReader accel(tableOf(doc, "accelerometer", source), source, "accelerometer");
+  c.accel.bias_m_s2 = accel.vec3("bias_m_s2", c.accel.bias_m_s2, "m/s^2");
+  c.accel.scale = scaleOf(accel, c.accel.scale);
+  if (accel.has("noise_sigma_m_s2")) c.accel.noise_sigma_m_s2 = accel.vec3("noise_sigma_m_s2", Vec3::Zero(), "m/s^2");
+  accel.rejectUnknownKeys();
+
+  TomlTableReader quality(tableOf(doc, "quality", source), source, "quality");
+  if (quality.has("residual_rms_uT")) c.provenance.residual_rms_uT = quality.finite("residual_rms_uT", 0.0, "uT");
+  if (quality.has("coverage")) c.provenance.coverage = quality.finite("coverage", 0.0, "(a fraction 0 .. 1)");
+  if (quality.has("condition_number")) c.provenance.condition_number = quality.finite("condition_number", 0.0, "1");
+  quality.rejectUnknownKeys();
   return c;
 }
 

@@ -1,35 +1,15 @@
 #include "headingd/core/params_toml.hpp"
 
-#include <algorithm>
 #include <limits>
 #include <sstream>
-#include <toml++/toml.h>
+
+#include "headingd/core/toml_document.hpp"
+#include "headingd/core/toml_table_reader.hpp"
 
 namespace headingd::core {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string where(const std::string& source, const toml::source_region& r) {
-  std::ostringstream o;
-  o << source << ":" << r.begin.line;
-  return o.str();
-}
-
-// The key written on line `line` (1-based) of `text`, or "" if that line has no `key =`.
-std::string keyOnLine(std::string_view text, std::size_t line) {
-  for (std::size_t i = 1; i < line && !text.empty(); ++i) {
-    const std::size_t nl = text.find('\n');
-    text = nl == std::string_view::npos ? std::string_view() : text.substr(nl + 1);
-  }
-  text = text.substr(0, text.find('\n'));
-  const std::size_t equals = text.find('=');
-  if (equals == std::string_view::npos) return "";
-  std::string_view key = text.substr(0, equals);
-  while (!key.empty() && (key.front() == ' ' || key.front() == '\t')) key.remove_prefix(1);
-  while (!key.empty() && (key.back() == ' ' || key.back() == '\t')) key.remove_suffix(1);
-  return std::string(key);
-}
 
 }  // namespace
 
@@ -91,74 +71,32 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
   return specs;
 }
 
-EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::string& source) {
-  toml::table doc;
-  try {
-    doc = toml::parse(toml_text, source);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream o;
-    o << where(source, e.source()) << ": TOML syntax error";
-    const std::string key = keyOnLine(toml_text, e.source().begin.line);
-    if (!key.empty()) o << " in the value of '" << key << "'";
-    o << ": " << e.description();
-    throw ConfigError(o.str());
-  }
+EstimatorParams parseEstimatorTable(const toml::table* estimator, const std::string& source) {
+  TomlTableReader r(estimator, source, "estimator");
   EstimatorParams p;
-  for (auto&& [top_key, top_node] : doc) {
-    if (top_key.str() != "estimator") {
-      throw ConfigError(where(source, top_node.source()) + ": unknown table or key '" + std::string(top_key.str()) +
-                        "' (expected [estimator])");
-    }
+  for (const ParamSpec& spec : estimatorParamSpecs()) {
+    p.*(spec.member) = r.number(spec.key, p.*(spec.member), spec.min, spec.max, spec.unit);
   }
-  const toml::table* table = doc["estimator"].as_table();
-  if (table == nullptr) {
-    if (doc.contains("estimator")) throw ConfigError(source + ": 'estimator' must be a table");
-    return p;
-  }
-  const auto& specs = estimatorParamSpecs();
-  std::map<std::string, int> key_lines;
-  for (auto&& [key, node] : *table) {
-    key_lines[std::string(key.str())] = static_cast<int>(node.source().begin.line);
-    const ParamSpec* spec = nullptr;
-    for (const auto& s : specs) {
-      if (key.str() == s.key) spec = &s;
-    }
-    const std::string at = where(source, node.source()) + ": [estimator] " + std::string(key.str());
-    if (spec == nullptr) {
-      std::string list;
-      for (const auto& s : specs) list += (list.empty() ? "" : ", ") + std::string(s.key);
-      throw ConfigError(at + ": unknown key (expected one of: " + list + "; config/estimator.toml documents them)");
-    }
-    const std::optional<double> value = node.value<double>();  // integers convert too
-    if (!value || !(node.is_floating_point() || node.is_integer())) {
-      throw ConfigError(at + ": expected a number in " + spec->unit);
-    }
-    if (!(*value >= spec->min && *value <= spec->max)) {
-      std::ostringstream o;
-      o << at << ": " << *value << " is out of range, expected " << spec->min << " .. " << spec->max << " "
-        << spec->unit;
-      throw ConfigError(o.str());
-    }
-    p.*(spec->member) = *value;
-  }
-  validateEstimatorParams(p, source, &key_lines);
+  r.rejectUnknownKeys("config/estimator.toml documents them");
+  validateEstimatorParams(p, r);
   return p;
 }
 
-void validateEstimatorParams(const EstimatorParams& p, const std::string& source,
-                             const std::map<std::string, int>* key_lines) {
-  // Names the line of whichever of the two keys the file sets (the later one if both).
-  auto require = [&](bool ok, const char* key_a, const char* key_b, const char* what) {
-    if (ok) return;
-    int line = 0;
-    if (key_lines != nullptr) {
-      for (const char* key : {key_a, key_b}) {
-        const auto it = key_lines->find(key);
-        if (it != key_lines->end()) line = std::max(line, it->second);
-      }
+EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::string& source) {
+  const toml::table doc = parseTomlDocument(toml_text, source);
+  for (auto&& [key, node] : doc) {
+    if (key.str() != "estimator") {
+      throw ConfigError(sourceLine(source, node) + ": unknown table or key '" + std::string(key.str()) +
+                        "' (expected [estimator])");
     }
-    const std::string at = line > 0 ? source + ":" + std::to_string(line) : source;
-    throw ConfigError(at + ": [estimator] " + what);
+  }
+  return parseEstimatorTable(tableOf(doc, "estimator", source), source);
+}
+
+void validateEstimatorParams(const EstimatorParams& p, const TomlTableReader& r) {
+  // Each check names the line of whichever of its two keys the file sets (the later one).
+  auto require = [&r](bool ok, const char* key_a, const char* key_b, const std::string& what) {
+    if (!ok) r.failBetween(key_a, key_b, what);
   };
   require(p.disturbance_down_to_standing < p.disturbance_up_to_walking, "disturbance_down_to_standing",
           "disturbance_up_to_walking",
@@ -172,6 +110,20 @@ void validateEstimatorParams(const EstimatorParams& p, const std::string& source
           "rest_gyro_max_threshold_rad_s", "rest_gyro_threshold_rad_s must not exceed rest_gyro_max_threshold_rad_s");
   require(p.redefine_heading_enter < p.redefine_heading_leave, "redefine_heading_enter", "redefine_heading_leave",
           "redefine_heading_enter must be below redefine_heading_leave (hysteresis)");
+  // The two background headings restart every period, staggered by half of it, so the older
+  // one is always between half a period and a period old (heading_corrections.hpp): a
+  // maximum age below half the period would never let the restore happen.
+  std::ostringstream restore;
+  restore << "mag_restore_max_age_s = " << p.mag_restore_max_age_s << " s is below half of backup_reset_period_s ("
+          << p.backup_reset_period_s << " s): the older background heading is always at least "
+          << 0.5 * p.backup_reset_period_s << " s old, so the restore could never happen; expected 0 (restore off) or "
+          << 0.5 * p.backup_reset_period_s << " s or more";
+  require(p.mag_restore_max_age_s == 0.0 || p.mag_restore_max_age_s >= 0.5 * p.backup_reset_period_s,
+          "mag_restore_max_age_s", "backup_reset_period_s", restore.str());
+}
+
+void validateEstimatorParams(const EstimatorParams& p, const std::string& source) {
+  validateEstimatorParams(p, TomlTableReader(nullptr, source, "estimator"));
 }
 
 }  // namespace headingd::core

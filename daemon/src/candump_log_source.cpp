@@ -7,7 +7,7 @@
 #include "headingd/daemon/can_assembler_report.hpp"
 #include "headingd/daemon/can_epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::daemon {
 
@@ -28,7 +28,7 @@ CandumpLogSource::CandumpLogSource(std::string name, const CandumpLogSourceConfi
   {
     // Read whole (a 10 min, 100 Hz log is ~10 MB of text, ~6 MB of frames) so that playing
     // never touches the disk and --check-config sees every line.
-    std::istringstream text(replay::readMaybeGzipFile(config.path));
+    std::istringstream text(files::readMaybeGzipFile(config.path));
     can::CandumpReader reader(text);
     while (const std::optional<can::CanFrame> frame = reader.next()) frames_.push_back(*frame);
     reader_counters_ = reader.counters();

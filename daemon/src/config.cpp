@@ -3,54 +3,26 @@
 
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 #include <toml++/toml.h>
 
-#include "toml_table_reader.hpp"
+#include "headingd/core/toml_table_reader.hpp"
 
 namespace headingd::daemon {
 namespace {
 
-constexpr const char* kTables[] = {"daemon",  "log",      "realtime",    "rings",    "lcm", "estimator",
-                                   "imu_csv", "playback", "candump_log", "nmea_log", "can", "gps"};
+using core::rejectUnknownTables;
+using core::sourceLine;
+using core::TomlTableReader;
 
-// The [estimator] table alone, on the same lines as in the file, for core's parser
-// (which accepts only that table): its header and key lines stay, all others go blank.
-std::string estimatorTableText(std::string_view text, const toml::table& estimator, const std::string& source) {
-  std::vector<std::string_view> lines;
-  for (std::size_t start = 0; start <= text.size();) {
-    const std::size_t nl = text.find('\n', start);
-    const std::size_t end = nl == std::string_view::npos ? text.size() : nl;
-    lines.push_back(text.substr(start, end - start));
-    if (nl == std::string_view::npos) break;
-    start = nl + 1;
-  }
-  std::set<std::size_t> keep;  // 1-based line numbers
-  std::size_t first_key_line = 0;
-  for (auto&& [key, node] : estimator) {
-    const std::size_t begin = node.source().begin.line, end = node.source().end.line;
-    if (first_key_line == 0 || begin < first_key_line) first_key_line = begin;
-    for (std::size_t l = begin; l <= end; ++l) keep.insert(l);
-  }
-  const std::size_t header_line = estimator.source().begin.line;
-  if (first_key_line != 0 && header_line >= first_key_line) {
-    throw core::ConfigError(source + ":" + std::to_string(first_key_line) +
-                            ": [estimator]: write the estimator keys below an [estimator] header, "
-                            "not as dotted keys");
-  }
-  std::string out;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const std::size_t line = i + 1;
-    if (line == header_line) {
-      out += "[estimator]";
-    } else if (keep.count(line) != 0) {
-      out += lines[i];
-    }
-    out += '\n';
-  }
-  return out;
+// A path key whose file must be readable at start-up (when `required`).
+std::string readablePath(TomlTableReader& r, std::string_view key, const std::string& fallback,
+                         const std::string& base_dir, bool required) {
+  std::string path = r.path(key, fallback, base_dir);
+  if (required && !path.empty() && !std::ifstream(path).good()) r.fail(key, "cannot open '" + path + "' for reading");
+  return path;
 }
+
 
 // LCM channel names: non-empty, printable, no spaces (they are typed on command lines).
 void checkChannel(TomlTableReader& r, std::string_view key, const std::string& channel) {
@@ -74,20 +46,8 @@ const char* atEndName(AtEnd a) {
 DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source, const std::string& base_dir) {
   toml::table doc = core::parseTomlDocument(text, source);
 
-  std::string expected;
-  for (const char* t : kTables) expected += (expected.empty() ? "[" : ", [") + std::string(t) + "]";
-  for (auto&& [key, node] : doc) {
-    bool known = false;
-    for (const char* t : kTables) known = known || key.str() == t;
-    if (!known) {
-      throw core::ConfigError(sourceLine(source, node) + ": unknown table or key '" + std::string(key.str()) +
-                              "' (expected " + expected + ")");
-    }
-    if (!node.is_table()) {
-      throw core::ConfigError(sourceLine(source, node) + ": '" + std::string(key.str()) +
-                              "' must be a table ([" + std::string(key.str()) + "] on a line of its own)");
-    }
-  }
+  rejectUnknownTables(doc, source, {"daemon", "log", "realtime", "rings", "lcm", "estimator", "imu_csv", "playback",
+                                    "candump_log", "nmea_log", "can", "gps"});
 
   DaemonConfig c;
   c.source = source;
@@ -97,13 +57,13 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   c.imu_timeout_s = daemon.number("imu_timeout_s", c.imu_timeout_s, 0.01, 60.0, "s");
   c.status_period_s = daemon.number("status_period_s", c.status_period_s, 0.1, 60.0, "s");
   c.console_status = daemon.boolean("console_status", c.console_status);
-  c.wmm_path = daemon.path("wmm", c.wmm_path, base_dir, true);
-  c.calibration_path = daemon.path("calibration", c.calibration_path, base_dir, true);
+  c.wmm_path = readablePath(daemon, "wmm", c.wmm_path, base_dir, true);
+  c.calibration_path = readablePath(daemon, "calibration", c.calibration_path, base_dir, true);
   daemon.rejectUnknownKeys();
 
   TomlTableReader log(doc["log"].as_table(), source, "log");
   c.log.level = log.choice("level", c.log.level, {"trace", "debug", "info", "warn", "error", "critical", "off"});
-  c.log.file = log.path("file", c.log.file, base_dir, false);
+  c.log.file = log.path("file", c.log.file, base_dir);
   c.log.repeat_burst = static_cast<int>(log.integer("repeat_burst", c.log.repeat_burst, 1, 1000));
   c.log.repeat_interval_s = log.number("repeat_interval_s", c.log.repeat_interval_s, 0.1, 3600.0, "s");
   log.rejectUnknownKeys();
@@ -146,17 +106,15 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   c.lcm.publish_gps = lcm.boolean("publish_gps", c.lcm.publish_gps);
   lcm.rejectUnknownKeys();
 
-  if (const toml::table* estimator = doc["estimator"].as_table()) {
-    c.estimator = core::parseEstimatorParams(estimatorTableText(text, *estimator, source), source);
-  }
+  c.estimator = core::parseEstimatorTable(doc["estimator"].as_table(), source);
 
   TomlTableReader csv(doc["imu_csv"].as_table(), source, "imu_csv");
   c.imu_csv.enabled = csv.boolean("enabled", c.imu_csv.enabled);
-  c.imu_csv.imu_csv_path = csv.path("path", "", base_dir, c.imu_csv.enabled);
+  c.imu_csv.imu_csv_path = readablePath(csv, "path", "", base_dir, c.imu_csv.enabled);
   if (c.imu_csv.enabled && c.imu_csv.imu_csv_path.empty()) {
     csv.fail("path", "expected the IMU CSV file to play (the source is enabled)");
   }
-  c.imu_csv.nmea_path = csv.path("nmea", "", base_dir, c.imu_csv.enabled);
+  c.imu_csv.nmea_path = readablePath(csv, "nmea", "", base_dir, c.imu_csv.enabled);
   c.imu_csv.nmea_first_epoch_t_s = csv.number("nmea_first_epoch_t_s", 0.0, -1e9, 1e9, "s");
   c.imu_csv.speed = csv.number("speed", c.imu_csv.speed, 0.01, 1000.0, "x real time");
   c.imu_csv.start_delay_s = csv.number("start_delay_s", c.imu_csv.start_delay_s, 0.0, 3600.0, "s");
@@ -176,8 +134,8 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
 
   TomlTableReader candump(doc["candump_log"].as_table(), source, "candump_log");
   c.candump_log.enabled = candump.boolean("enabled", false);
-  c.candump_log.path = candump.path("path", "", base_dir, c.candump_log.enabled);
-  c.candump_log.can_config_path = candump.path("can_config", "", base_dir, c.candump_log.enabled);
+  c.candump_log.path = readablePath(candump, "path", "", base_dir, c.candump_log.enabled);
+  c.candump_log.can_config_path = readablePath(candump, "can_config", "", base_dir, c.candump_log.enabled);
   if (c.candump_log.enabled) {
     if (c.candump_log.path.empty()) candump.fail("path", "expected the candump -l log to play (the source is enabled)");
     if (c.candump_log.can_config_path.empty()) {
@@ -193,7 +151,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
 
   TomlTableReader nmea_log(doc["nmea_log"].as_table(), source, "nmea_log");
   c.nmea_log.enabled = nmea_log.boolean("enabled", false);
-  c.nmea_log.path = nmea_log.path("path", "", base_dir, c.nmea_log.enabled);
+  c.nmea_log.path = readablePath(nmea_log, "path", "", base_dir, c.nmea_log.enabled);
   if (c.nmea_log.enabled && c.nmea_log.path.empty()) {
     nmea_log.fail("path", "expected the NMEA log to play (the source is enabled)");
   }

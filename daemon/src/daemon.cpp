@@ -14,14 +14,14 @@
 #endif
 #include "headingd/daemon/clocks.hpp"
 #include "headingd/daemon/realtime.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::daemon {
 
 Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   if (!config_.wmm_path.empty()) {
     wmm_ = std::make_unique<core::WorldMagneticModel>(
-        core::parseWmmCoefficients(replay::readMaybeGzipFile(config_.wmm_path), config_.wmm_path));
+        core::parseWmmCoefficients(files::readMaybeGzipFile(config_.wmm_path), config_.wmm_path));
   }
   // Each source gets its own rings (single producer each); see daemon/README.md, "Sources".
 #ifdef HEADINGD_WITH_CAN

@@ -5,17 +5,17 @@
 #include <cmath>
 
 #include "headingd/daemon/clocks.hpp"
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/nmea_epochs.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/nmea_epochs.hpp"
 
 namespace headingd::daemon {
 
 ImuCsvSource::ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, std::uint16_t source_index,
                            SampleRing<ImuRingEntry>* imu_ring, SampleRing<GpsRingEntry>* gps_ring)
     : name_(std::move(name)), config_(config), source_index_(source_index), imu_ring_(imu_ring), gps_ring_(gps_ring) {
-  imu_ = replay::readImuCsv(config_.imu_csv_path);
+  imu_ = files::readImuCsv(config_.imu_csv_path);
   if (!config_.nmea_path.empty()) {
-    replay::NmeaEpochs epochs = replay::readNmeaEpochs(config_.nmea_path, config_.nmea_first_epoch_t_s);
+    files::NmeaEpochs epochs = files::readNmeaEpochs(config_.nmea_path, config_.nmea_first_epoch_t_s);
     gps_ = std::move(epochs.epochs);
     nmea_counters_ = epochs.counters;
   }

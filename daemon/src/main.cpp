@@ -44,8 +44,9 @@ std::string summaryJson(const LoopSummary& s) {
                 "\"gps_published\":%llu,\"status_published\":%llu,\"publish_errors\":%llu,\"rss_kb\":%ld,"
                 "\"max_rss_kb\":%ld}",
                 static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.deadline_misses),
-                s.jitter_p50_us, s.jitter_p99_us, s.jitter_max_us, s.processing_p50_us, s.processing_p99_us,
-                s.processing_max_us, s.sample_age_p50_us, s.sample_age_p99_us, s.sample_age_max_us,
+                s.timing.jitter_p50_us, s.timing.jitter_p99_us, s.timing.jitter_max_us, s.timing.processing_p50_us,
+                s.timing.processing_p99_us, s.timing.processing_max_us, s.timing.sample_age_p50_us,
+                s.timing.sample_age_p99_us, s.timing.sample_age_max_us,
                 static_cast<unsigned long long>(s.heading_published), static_cast<unsigned long long>(s.imu_published),
                 static_cast<unsigned long long>(s.gps_published), static_cast<unsigned long long>(s.status_published),
                 static_cast<unsigned long long>(s.publish_errors), residentKb(), usage.ru_maxrss);

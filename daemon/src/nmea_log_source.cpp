@@ -4,10 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "headingd/nmea/comment_filter.hpp"
-#include "headingd/nmea/parser.hpp"
-#include "headingd/replay/gps_observation_from_fix.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/nmea_epochs.hpp"
+#include "headingd/nmea/gps_observation_from_fix.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -43,14 +41,7 @@ NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config
       nmea::LineHandler{}, [this] { onFinished(); });
 
   // The first epoch's time and the first date, from the parser's view of the whole log.
-  const std::string text = replay::readMaybeGzipFile(config.path);
-  std::vector<std::uint8_t> bytes;
-  nmea::CommentFilter comments;
-  comments.filter({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, bytes);
-  nmea::Parser parser;
-  std::vector<nmea::FixUpdate> updates;
-  parser.feed(std::span<const std::uint8_t>(bytes), updates);
-  parser.finish();
+  const std::vector<nmea::FixUpdate> updates = files::readNmeaLogFixes(config.path).updates;
   std::optional<std::int64_t> previous_tod;
   for (const nmea::FixUpdate& u : updates) {
     if (u.fix.utc_ns && u.fix.time_of_day_ns && first_day_ns_ == 0) first_day_ns_ = *u.fix.utc_ns - *u.fix.time_of_day_ns;
@@ -78,7 +69,7 @@ void NmeaLogSource::onFix(const nmea::Fix& fix, std::int64_t receive_ns) {
     t = clock_->logNsAt(receive_ns);
   }
   GpsRingEntry e;
-  e.observation = replay::gpsObservationFromFix(fix, *t);
+  e.observation = nmea::gpsObservationFromFix(fix, *t);
   e.arrival_mono_ns = receive_ns;
   e.source_index = source_index_;
   (ring_->push(e) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);

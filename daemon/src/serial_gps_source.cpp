@@ -3,7 +3,7 @@
 #include <boost/asio/post.hpp>
 #include <future>
 
-#include "headingd/replay/gps_observation_from_fix.hpp"
+#include "headingd/nmea/gps_observation_from_fix.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -22,7 +22,7 @@ SerialGpsSource::~SerialGpsSource() { stop(); }
 
 void SerialGpsSource::onFix(const nmea::Fix& fix, std::int64_t receive_ns) {
   GpsRingEntry e;
-  e.observation = replay::gpsObservationFromFix(fix, receive_ns);
+  e.observation = nmea::gpsObservationFromFix(fix, receive_ns);
   e.arrival_mono_ns = receive_ns;
   e.source_index = source_index_;
   (ring_->push(e) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);

@@ -15,8 +15,8 @@
 
 #include "headingd/core/estimator.hpp"
 #include "headingd/core/orientation_error.hpp"
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 #include "test_data.hpp"
 
 namespace {
@@ -75,8 +75,8 @@ struct Average {
 };
 
 core::OrientationError replayAndScore(const std::string& path) {
-  const auto samples = replay::readImuCsv(path);
-  const auto ref = replay::readNumericCsv(path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
+  const auto samples = files::readImuCsv(path);
+  const auto ref = files::readNumericCsv(path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
   core::Estimator estimator;
   core::RmseAccumulator rmse;
   for (std::size_t i = 0; i < samples.size(); ++i) {

@@ -14,8 +14,8 @@
 
 #include "headingd/core/attitude_ekf.hpp"
 #include "headingd/core/estimator.hpp"
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 namespace {
 
@@ -78,8 +78,8 @@ void BM_EstimatorBroadTrial(benchmark::State& state) {
   static std::string error;
   static const std::vector<ImuSample> samples = []() {
     try {
-      return headingd::replay::readImuCsv(HEADINGD_BENCH_BROAD_TRIAL);
-    } catch (const headingd::replay::CsvError& e) {
+      return headingd::files::readImuCsv(HEADINGD_BENCH_BROAD_TRIAL);
+    } catch (const headingd::files::CsvError& e) {
       error = e.what();
       return std::vector<ImuSample>{};
     }

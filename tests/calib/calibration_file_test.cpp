@@ -99,7 +99,7 @@ TEST(CalibrationFile, ErrorsNameFileLineKeyAndExpectation) {
   expectError("[magnetometer]\nfield_norm_source = \"guess\"\n", "calib.toml:2: [magnetometer] field_norm_source: expected \"wmm\"");
   expectError("\n[gyroscope]\nscale = [1, 0, 1]\n", "calib.toml:3: [gyroscope] scale: expected positive scale factors");
   expectError("[gyroscope]\nbias = [0, 0, 0]\n", "calib.toml:2: [gyroscope] bias: unknown key (expected one of");
-  expectError("[magnetometre]\n", "calib.toml:1: unknown table 'magnetometre'");
+  expectError("[magnetometre]\n", "calib.toml:1: unknown table or key 'magnetometre'");
   expectError("[calibration]\nsample_range = [5, 2]\n", "calib.toml:2: [calibration] sample_range: expected [first, end)");
   expectError("[magnetometer]\nD = \n", "calib.toml:2: TOML syntax error");
   expectError("magnetometer = 3\n", "calib.toml:1: 'magnetometer' must be a table");

@@ -9,7 +9,7 @@
 #include "headingd/can/candump_log.hpp"
 #include "headingd/can/candump_writer.hpp"
 #include "headingd/can/epoch_assembler.hpp"
-#include "headingd/replay/imu_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
 
 namespace headingd::can {
 namespace {
@@ -59,7 +59,7 @@ class RoundTrip : public ::testing::TestWithParam<int> {};
 
 TEST_P(RoundTrip, BroadRecordingThroughHeadingdFrames) {
   const int mag_every = GetParam();
-  const auto csv = replay::readImuCsv(HEADINGD_DEMO_IMU_CSV);
+  const auto csv = files::readImuCsv(HEADINGD_DEMO_IMU_CSV);
   ASSERT_GT(csv.size(), 1000u);
   const CanSetup setup = loadCanSetup(test::configPath("can-headingd.toml"));
   const ImuFrameCodec codec(setup.config, setup.dbc);
@@ -92,7 +92,7 @@ TEST(CandumpFromCsvTool, WritesALogThatReplaysToTheCsv) {
                               " --can-config " + test::configPath("can-headingd.toml") + " --out " + log_path +
                               " --mag-every 2 > " + dir.path() + "/stdout.txt";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  const auto csv = replay::readImuCsv(HEADINGD_DEMO_IMU_CSV);
+  const auto csv = files::readImuCsv(HEADINGD_DEMO_IMU_CSV);
   const CanSetup setup = loadCanSetup(test::configPath("can-headingd.toml"));
   const ImuFrameCodec codec(setup.config, setup.dbc);
   const ReplayResult r = replayLog(log_path, codec, epochSettingsFrom(setup.config));

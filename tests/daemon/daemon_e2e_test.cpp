@@ -127,6 +127,17 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
   EXPECT_NEAR(last.heading_rate_hz, 100.0, 5.0);
   ASSERT_EQ(last.num_sources, 1);
   EXPECT_EQ(last.sources[0].kind, "imu_csv");
+  // The counters' names and order, as subscribers read them (status_builder.hpp).
+  std::vector<std::string> counter_names;
+  for (const auto& c : last.counters) counter_names.push_back(c.name);
+  EXPECT_EQ(counter_names,
+            (std::vector<std::string>{"samples_accepted", "gaps", "clock_jumps", "duplicate_time", "backwards_time",
+                                      "non_finite", "non_finite_mag", "out_of_range", "out_of_range_mag",
+                                      "imu_rejected", "bias_still_blocks", "mag_no_heading", "mag_disturbed",
+                                      "mag_heading_restores", "mag_calibration_set_aside",
+                                      "mag_calibration_taken_back", "state_recoveries", "gps_epochs",
+                                      "gps_epochs_used_for_declination", "gps_epochs_forced_out"}));
+  EXPECT_EQ(last.num_counters, static_cast<std::int32_t>(last.counters.size()));
   const std::string summary = test::readFile(dir.file("err"));
   EXPECT_NE(summary.find("\"imu_published\":" + std::to_string(kTrialSamples)), std::string::npos) << summary;
 

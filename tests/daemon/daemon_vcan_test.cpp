@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "daemon_test_support.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 #include "lcm_collector.hpp"
 #include "vcan_test_support.hpp"
 
@@ -74,7 +74,7 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
   const std::vector<std::string> axes = {"gyr_x", "gyr_y", "gyr_z", "acc_x", "acc_y", "acc_z", "mag_x", "mag_y", "mag_z"};
   std::vector<std::string> columns = axes;
   columns.push_back("t");
-  const replay::NumericCsv rows = replay::readNumericCsv(dir.file("imu.csv"), columns);
+  const files::NumericCsv rows = files::readNumericCsv(dir.file("imu.csv"), columns);
   ASSERT_EQ(rows.rows, static_cast<std::size_t>(kRows));
   constexpr double kHalfStep[3] = {0.0001 / 2, 0.0002 / 2, 0.002 / 2};  // gyro, accel, mag (headingd_imu.dbc)
   double worst_step_fraction = 0.0;
@@ -111,7 +111,7 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
                          dir.file("replay.csv") + " 2>/dev/null")
                             .c_str()),
             0);
-  const std::vector<double> replay_yaw_deg = replay::readNumericCsv(dir.file("replay.csv"), {"yaw_deg"}).column("yaw_deg");
+  const std::vector<double> replay_yaw_deg = files::readNumericCsv(dir.file("replay.csv"), {"yaw_deg"}).column("yaw_deg");
   ASSERT_EQ(replay_yaw_deg.size(), static_cast<std::size_t>(kRows));
   std::map<std::int64_t, std::size_t> index_of_sample;
   for (std::size_t i = 0; i < imu.size(); ++i) index_of_sample[imu[i].message.sample_utime] = i;

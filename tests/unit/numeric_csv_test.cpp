@@ -9,10 +9,10 @@
 #include <fstream>
 #include <string>
 
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
-namespace headingd::replay {
+namespace headingd::files {
 namespace {
 
 namespace fs = std::filesystem;
@@ -224,4 +224,4 @@ TEST_F(CsvFiles, ReadNumericCsvOptionalColumns) {
 }
 
 }  // namespace
-}  // namespace headingd::replay
+}  // namespace headingd::files

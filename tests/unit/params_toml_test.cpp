@@ -119,6 +119,20 @@ TEST(ParamsToml, BadHysteresisOrderIsAnError) {
                          "redefine_heading_leave");
 }
 
+TEST(ParamsToml, RestoreAgeBelowHalfTheBackgroundPeriodIsAnError) {
+  // The older background heading is always half a period to a period old: a maximum age
+  // under half the period means the restore can never happen.
+  const std::string m = errorOf("[estimator]\nbackup_reset_period_s = 10\n\nmag_restore_max_age_s = 3\n");
+  expectNamesFileLineKey(m, 4, "mag_restore_max_age_s");
+  EXPECT_NE(m.find("backup_reset_period_s"), std::string::npos) << m;
+  EXPECT_NE(m.find("never"), std::string::npos) << m;
+  // Raising the period past twice the age is the same mistake, named at the period's line.
+  expectNamesFileLineKey(errorOf("[estimator]\nmag_restore_max_age_s = 10\nbackup_reset_period_s = 30\n"), 3,
+                         "backup_reset_period_s");
+  EXPECT_EQ(errorOf("[estimator]\nmag_restore_max_age_s = 0\n"), "") << "0 turns the restore off";
+  EXPECT_EQ(errorOf("[estimator]\nmag_restore_max_age_s = 5\n"), "") << "exactly half the default period";
+}
+
 TEST(ParamsToml, ValidateEstimatorParamsChecksOrder) {
   EXPECT_NO_THROW(validateEstimatorParams(EstimatorParams{}, "defaults"));
   EstimatorParams p;

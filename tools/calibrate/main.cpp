@@ -20,8 +20,8 @@
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/core/wmm.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 namespace {
 
@@ -123,7 +123,7 @@ bool fieldFromArguments(const Arguments& a, calibrate::FieldNorm& field) {
       std::fprintf(stderr, "headingd-calibrate: --date: expected YYYY-MM-DD, got '%s'\n", a.date.c_str());
       return false;
     }
-    const core::WorldMagneticModel wmm(core::parseWmmCoefficients(replay::readMaybeGzipFile(a.wmm_path), a.wmm_path));
+    const core::WorldMagneticModel wmm(core::parseWmmCoefficients(files::readMaybeGzipFile(a.wmm_path), a.wmm_path));
     const auto e = wmm.field({*a.lat, *a.lon, 0.0}, core::decimalYear(y, m, d));
     field.norm_uT = e.f_nT / 1000.0;
     field.dip_rad = e.inclination_deg * kDeg;
@@ -190,7 +190,7 @@ int main(int argc, char** argv) {
   try {
     if (!fieldFromArguments(a, field)) return kBadArguments;
     progress("reading %s", a.imu_csv.c_str());
-    all = replay::readImuCsv(a.imu_csv);
+    all = files::readImuCsv(a.imu_csv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-calibrate: %s\n", e.what());
     return kFileError;

@@ -7,8 +7,8 @@
 #include <iostream>
 
 #include "headingd/can/candump_writer.hpp"
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 int main(int argc, char** argv) {
   using namespace headingd;
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   try {
     const can::CanSetup setup = can::loadCanSetup(can_config);
     const can::ImuFrameCodec codec(setup.config, setup.dbc);
-    const auto samples = replay::readImuCsv(imu_csv);
+    const auto samples = files::readImuCsv(imu_csv);
     can::CandumpWriteOptions options;
     options.interface = interface.empty() ? setup.config.interface : interface;
     options.start_time_ns = std::llround(start_time_s * 1e9);

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "headingd/core/orientation_error.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 int main(int argc, char** argv) {
   using namespace headingd;
@@ -19,10 +19,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    const auto est = replay::readNumericCsv(estimates_path, {"qw", "qx", "qy", "qz"});
-    const auto ref = replay::readNumericCsv(reference_path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
+    const auto est = files::readNumericCsv(estimates_path, {"qw", "qx", "qy", "qz"});
+    const auto ref = files::readNumericCsv(reference_path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
     if (est.rows != ref.rows) {
-      throw replay::CsvError("estimates have " + std::to_string(est.rows) + " rows, reference " +
+      throw files::CsvError("estimates have " + std::to_string(est.rows) + " rows, reference " +
                              std::to_string(ref.rows) + ": rows are paired by index, so they must match");
     }
     core::RmseAccumulator rmse;

@@ -12,12 +12,13 @@
 
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
+#include "headingd/core/imu_then_gps_order.hpp"
 #include "headingd/core/mag_calibration_fit.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/core/params_toml.hpp"
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/nmea_epochs.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/nmea_epochs.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 namespace {
 
@@ -25,24 +26,16 @@ using namespace headingd;
 
 core::EstimatorParams loadParams(const std::string& path) {
   if (path.empty()) return {};
-  return core::parseEstimatorParams(replay::readMaybeGzipFile(path), path);
+  return core::parseEstimatorParams(files::readMaybeGzipFile(path), path);
 }
 
+// One JSON line: the row count, the estimator's counters, the time per sample.
 void printCounters(const core::EstimatorCounters& c, std::size_t rows, double seconds) {
-  const auto& s = c.samples;
-  std::fprintf(stderr,
-               "{\"rows\":%zu,\"accepted\":%llu,\"gaps\":%llu,\"clock_jumps\":%llu,\"duplicate_time\":%llu,"
-               "\"backwards_time\":%llu,\"non_finite\":%llu,\"non_finite_mag\":%llu,\"out_of_range\":%llu,"
-               "\"out_of_range_mag\":%llu,\"bias_still_blocks\":%llu,\"mag_no_heading\":%llu,\"mag_disturbed\":%llu,"
-               "\"mag_heading_restores\":%llu,\"state_recoveries\":%llu,\"estimator_ns_per_sample\":%.1f}\n",
-               rows, static_cast<unsigned long long>(s.accepted), static_cast<unsigned long long>(s.gaps),
-               static_cast<unsigned long long>(s.clock_jumps), static_cast<unsigned long long>(s.duplicate_time),
-               static_cast<unsigned long long>(s.backwards_time), static_cast<unsigned long long>(s.non_finite),
-               static_cast<unsigned long long>(s.non_finite_mag), static_cast<unsigned long long>(s.out_of_range),
-               static_cast<unsigned long long>(s.out_of_range_mag), static_cast<unsigned long long>(c.bias_still_blocks),
-               static_cast<unsigned long long>(c.mag_no_heading), static_cast<unsigned long long>(c.mag_disturbed),
-               static_cast<unsigned long long>(c.mag_heading_restores),
-               static_cast<unsigned long long>(c.state_recoveries), rows ? seconds * 1e9 / rows : 0.0);
+  std::fprintf(stderr, "{\"rows\":%zu", rows);
+  core::forEachCounter(c, [](const char* name, std::uint64_t v) {
+    std::fprintf(stderr, ",\"%s\":%llu", name, static_cast<unsigned long long>(v));
+  });
+  std::fprintf(stderr, ",\"estimator_ns_per_sample\":%.1f}\n", rows ? seconds * 1e9 / rows : 0.0);
 }
 
 }  // namespace
@@ -74,32 +67,33 @@ int main(int argc, char** argv) {
 
   try {
     const core::EstimatorParams params = loadParams(config);
-    auto samples = replay::readImuCsv(imu_csv);
+    auto samples = files::readImuCsv(imu_csv);
     core::CalibratedImuStream calibration;
     if (!calib_path.empty()) {
       calibration = core::CalibratedImuStream(
-          core::parseImuCalibration(replay::readMaybeGzipFile(calib_path), calib_path));
+          core::parseImuCalibration(files::readMaybeGzipFile(calib_path), calib_path));
       for (auto& s : samples) s = calibration.apply(s);
     }
     const bool with_gps = !nmea_path.empty();
-    replay::NmeaEpochs gps;
+    files::NmeaEpochs gps;
     std::optional<core::WorldMagneticModel> wmm;
     if (with_gps) {
-      gps = replay::readNmeaEpochs(nmea_path, nmea_first_epoch_t);
-      wmm.emplace(core::parseWmmCoefficients(replay::readMaybeGzipFile(wmm_path), wmm_path));
+      gps = files::readNmeaEpochs(nmea_path, nmea_first_epoch_t);
+      wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(wmm_path), wmm_path));
     }
     core::HeadingPipeline pipeline(params, wmm ? &*wmm : nullptr);
 
     // Estimates are kept in memory and written afterwards, so the timing below is the
-    // estimator's alone. GPS epochs go in after the IMU sample of the same or an earlier time.
+    // estimator's alone. Each GPS epoch goes in after the first IMU sample at or after its time.
     std::vector<core::HeadingOutput> estimates(samples.size());
-    std::size_t next_epoch = 0;
+    core::ImuThenGpsOrder<core::GpsObservation> order;
+    order.reserve(gps.epochs.size());
+    for (const core::GpsObservation& epoch : gps.epochs) order.pushGps(epoch);
+    const auto processGps = [&pipeline](const core::GpsObservation& epoch) { pipeline.processGps(epoch); };
     const auto start = std::chrono::steady_clock::now();
     for (std::size_t i = 0; i < samples.size(); ++i) {
       pipeline.process(samples[i]);
-      while (next_epoch < gps.epochs.size() && gps.epochs[next_epoch].t_ns <= samples[i].t_ns) {
-        pipeline.processGps(gps.epochs[next_epoch++]);
-      }
+      order.afterImu(samples[i].t_ns, processGps);
       estimates[i] = pipeline.output();  // a rejected sample repeats the last estimate
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

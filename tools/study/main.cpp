@@ -19,7 +19,7 @@
 
 #include "headingd/core/params_toml.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 #include "headingd/sim/simulation.hpp"
 #include "headingd/study/resample.hpp"
 #include "headingd/study/scoring.hpp"
@@ -30,7 +30,7 @@ using namespace headingd;
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
 core::EstimatorParams loadParams(const std::string& config, const std::vector<std::string>& sets) {
-  std::string text = config.empty() ? std::string() : replay::readMaybeGzipFile(config);
+  std::string text = config.empty() ? std::string() : files::readMaybeGzipFile(config);
   if (!sets.empty()) {
     if (text.find("[estimator]") == std::string::npos) text += "\n[estimator]\n";
     for (const std::string& s : sets) text += s + "\n";  // later keys of a table are errors: --set replaces none
@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
       (void)sim::makeScenario(scenario);  // an unknown name fails here, once
     }
     std::optional<core::WorldMagneticModel> wmm;
-    if (*simulate) wmm.emplace(core::parseWmmCoefficients(replay::readMaybeGzipFile(cof), cof));
+    if (*simulate) wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(cof), cof));
     const std::size_t sources = *broad ? paths.size() : seeds.size();
     // Simulations are run at the asked rate directly; recordings are resampled.
     std::vector<Row> rows(sources * rates.size());

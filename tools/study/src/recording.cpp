@@ -4,8 +4,8 @@
 #include <limits>
 #include <numbers>
 
-#include "headingd/replay/imu_csv.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 #include "headingd/sim/rng.hpp"
 
 namespace headingd::study {
@@ -16,8 +16,8 @@ Recording readBroadTrial(const std::string& path) {
   Recording r;
   r.name = std::filesystem::path(path).filename().string();
   if (r.name.ends_with(".csv.gz")) r.name.resize(r.name.size() - 7);
-  r.samples = replay::readImuCsv(path);
-  const auto ref = replay::readNumericCsv(path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
+  r.samples = files::readImuCsv(path);
+  const auto ref = files::readNumericCsv(path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // q_enu = q_EN ⊗ q_nb (core::nedToEnu); q_EN is a half turn, so q_nb = q_EN⁻¹ ⊗ q_enu, and
   // nedToEnu applied to q_enu gives q_EN ⊗ q_enu = -q_EN⁻¹ ⊗ q_enu, the same rotation.

@@ -55,6 +55,27 @@ struct EstimatorCounters {
   std::uint64_t state_recoveries = 0;    // a non-finite state was replaced (never expected)
 };
 
+// Calls fn(name, value) for every counter, in a fixed order, with stable snake_case names:
+// the one list headingd-replay prints and the daemon's STATUS reports.
+template <class Fn>
+void forEachCounter(const EstimatorCounters& c, Fn&& fn) {
+  const SampleCounters& s = c.samples;
+  fn("accepted", s.accepted);
+  fn("gaps", s.gaps);
+  fn("clock_jumps", s.clock_jumps);
+  fn("duplicate_time", s.duplicate_time);
+  fn("backwards_time", s.backwards_time);
+  fn("non_finite", s.non_finite);
+  fn("non_finite_mag", s.non_finite_mag);
+  fn("out_of_range", s.out_of_range);
+  fn("out_of_range_mag", s.out_of_range_mag);
+  fn("bias_still_blocks", c.bias_still_blocks);
+  fn("mag_no_heading", c.mag_no_heading);
+  fn("mag_disturbed", c.mag_disturbed);
+  fn("mag_heading_restores", c.mag_heading_restores);
+  fn("state_recoveries", c.state_recoveries);
+}
+
 // A value: a copy carries on independently from the same state (its parts hold their own
 // copies of the parameters, never references into this object).
 class Estimator {

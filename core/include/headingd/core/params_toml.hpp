@@ -1,21 +1,17 @@
 #pragma once
 // EstimatorParams from the [estimator] table of a TOML document. Parsing only: the caller
 // reads the file, so core stays free of I/O.
-#include <map>
-#include <stdexcept>
 #include <string>
 #include <string_view>
+#include <toml++/toml.h>
 #include <vector>
 
+#include "headingd/core/config_error.hpp"
 #include "headingd/core/estimator_params.hpp"
 
 namespace headingd::core {
 
-// Bad configuration: the message names the file, the line, the key and what was expected.
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+class TomlTableReader;
 
 // Description of one tunable, used for parsing, range checks and documentation tests.
 struct ParamSpec {
@@ -27,14 +23,19 @@ struct ParamSpec {
 };
 const std::vector<ParamSpec>& estimatorParamSpecs();
 
-// Parses `toml_text` (named `source_name` in messages). Keys absent from the document keep
-// their defaults; unknown keys, wrong types and out-of-range values throw ConfigError.
+// The [estimator] table of a document already parsed (null: absent, every key its default).
+// Unknown keys, wrong types, out-of-range values and inconsistent pairs throw ConfigError
+// naming `source_name`, the line and the key.
+EstimatorParams parseEstimatorTable(const toml::table* estimator, const std::string& source_name);
+
+// The same from a document that holds only an [estimator] table (config/estimator.toml,
+// headingd-replay --config).
 EstimatorParams parseEstimatorParams(std::string_view toml_text, const std::string& source_name);
 
-// Cross-checks between parameters (hysteresis order, level order); throws ConfigError.
-// `key_lines` (key → line in the source), when given, lets the message name the line of the
-// offending key.
-void validateEstimatorParams(const EstimatorParams& p, const std::string& source_name,
-                             const std::map<std::string, int>* key_lines = nullptr);
+// Checks between parameters (hysteresis order, level order, the restore's age against the
+// background headings' period); throws ConfigError at the line of the key in `table`'s file.
+void validateEstimatorParams(const EstimatorParams& p, const TomlTableReader& table);
+// The same for parameters that come from no file (the message names `source_name`).
+void validateEstimatorParams(const EstimatorParams& p, const std::string& source_name);
 
 }  // namespace headingd::core

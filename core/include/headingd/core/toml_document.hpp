@@ -1,11 +1,12 @@
 #pragma once
-// A TOML document from text, the one way every configuration and calibration file is read:
-// a syntax error becomes a ConfigError "source:line: TOML syntax error: what".
+// A TOML document from text, the one way every configuration and calibration file is parsed:
+// a syntax error becomes a ConfigError "source:line: TOML syntax error: what", followed by
+// the key when the broken line is a `key = value` line.
 #include <string>
 #include <string_view>
 #include <toml++/toml.h>
 
-#include "headingd/core/params_toml.hpp"
+#include "headingd/core/config_error.hpp"
 
 namespace headingd::core {
 

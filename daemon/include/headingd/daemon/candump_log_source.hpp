@@ -37,7 +37,7 @@ namespace headingd::daemon {
 class CandumpLogSource final : public Source {
  public:
   // Reads the DBC file and the whole log (throws core::ConfigError for the DBC and mapping,
-  // replay::CsvError when the log cannot be read). Lines that are not frames are counted.
+  // files::CsvError when the log cannot be read). Lines that are not frames are counted.
   CandumpLogSource(std::string name, const CandumpLogSourceConfig& config, const can::CanConfig& can_config,
                    AtEnd at_end, const PlaybackClock* clock, std::uint16_t source_index,
                    SampleRing<ImuRingEntry>* imu_ring);

@@ -30,7 +30,7 @@ enum class AtEnd {
 
 struct ImuCsvSourceConfig {
   bool enabled = false;
-  std::string imu_csv_path;  // BROAD format, plain or gzip (drivers/replay imu_csv.hpp)
+  std::string imu_csv_path;  // BROAD format, plain or gzip (drivers/files imu_csv.hpp)
   std::string nmea_path;     // optional GPS capture on the IMU time axis ("" = none)
   double nmea_first_epoch_t_s = 0.0;
   double speed = 1.0;        // play speed, 1 = real time

@@ -1,9 +1,10 @@
 #pragma once
 // The fixed-rate estimator thread. Each tick, at an absolute CLOCK_MONOTONIC deadline
 // (clock_nanosleep TIMER_ABSTIME, so late ticks do not push later ones back):
-//   drain every ring → order the samples by time → HeadingPipeline (IMU samples, GPS epochs
-//   after the IMU sample of the same or a later time, as headingd-replay does) → publish
-//   IMU and GPS as used, then HEADING and ATTITUDE once → STATUS every status period.
+//   drain every ring → order the samples by time → HeadingPipeline (each IMU sample, then the
+//   GPS epochs at or before it: core::ImuThenGpsOrder, as headingd-replay does) → publish
+//   IMU and GPS as used, then HEADING and ATTITUDE once → STATUS every status period
+//   (status_builder.hpp says what is in it).
 // It measures its wake-up jitter, processing time, missed deadlines and the age of the
 // newest sample at publish, in fixed histograms (no allocation after start-up).
 //
@@ -18,6 +19,7 @@
 
 #include "headingd/attitude_t.hpp"
 #include "headingd/core/heading_pipeline.hpp"
+#include "headingd/core/imu_then_gps_order.hpp"
 #include "headingd/core/mag_calibration_fit.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/latency_histogram.hpp"
@@ -27,6 +29,7 @@
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
+#include "headingd/daemon/status_builder.hpp"
 #include "headingd/daemon/systemd_notify.hpp"
 #include "headingd/gps_t.hpp"
 #include "headingd/heading_t.hpp"
@@ -39,9 +42,7 @@ namespace headingd::daemon {
 struct LoopSummary {
   std::uint64_t ticks = 0;
   std::uint64_t deadline_misses = 0;
-  double jitter_p50_us = 0, jitter_p99_us = 0, jitter_max_us = 0;
-  double processing_p50_us = 0, processing_p99_us = 0, processing_max_us = 0;
-  double sample_age_p50_us = 0, sample_age_p99_us = 0, sample_age_max_us = 0;
+  TickTimingFigures timing;
   std::uint64_t heading_published = 0, imu_published = 0, gps_published = 0, status_published = 0;
   std::uint64_t publish_errors = 0;
 };
@@ -64,16 +65,23 @@ class EstimatorLoop {
   LoopSummary summary() const;
 
  private:
+  // The steps of one tick, in order.
   void tick(std::int64_t wake_ns, bool last_tick);
+  void drainRings();
+  void putInTimeOrder();
+  void feedPipeline(std::int64_t wake_ns, bool last_tick, std::int64_t utime_us);
+  void logRingDrops(std::int64_t wake_ns);
   void processImu(const ImuRingEntry& e, std::int64_t utime_us);
   void processGps(const GpsRingEntry& e, std::int64_t utime_us);
   void publishEstimate(std::int64_t now_ns, std::int64_t utime_us);
   void publishStatus(std::int64_t now_ns, std::int64_t utime_us);
+  LoopCounters loopCounters() const;
   void reloadCalibration();
   bool sourcesWantExit() const;
-  // "ok", "degraded", "starting" and why.
-  const char* healthState(std::int64_t now_ns, std::string* reason) const;
   Validity validity(std::int64_t now_ns) const;
+  // Scheduling: timing of the tick just run, and the deadline of the next one.
+  void recordTickTiming(std::int64_t jitter_ns, std::int64_t processing_ns);
+  std::int64_t nextDeadline(std::int64_t deadline, std::int64_t wake_ns, std::int64_t done_ns);
 
   const DaemonConfig& config_;
   core::HeadingPipeline pipeline_;
@@ -97,24 +105,19 @@ class EstimatorLoop {
 
   // Per-tick buffers, reserved once.
   std::vector<ImuRingEntry> imu_batch_;
-  std::vector<GpsRingEntry> gps_pending_;  // held until an IMU sample at or after their time
+  core::ImuThenGpsOrder<GpsRingEntry> gps_order_;  // GPS epochs held until an IMU sample at or after them
 
   // Freshness.
   std::int64_t start_ns_ = 0;
-  bool any_imu_used_ = false;
-  std::int64_t last_used_arrival_ns_ = 0;   // arrival of the newest IMU sample the gate used
-  std::int64_t last_used_t_ns_ = 0;         // its sensor time
-  std::int64_t last_any_imu_arrival_ns_ = 0;  // of any IMU sample, used or rejected
+  ImuFreshness imu_;
   bool consumed_this_tick_ = false;
 
   // Timing.
   std::uint64_t ticks_ = 0;
   std::uint64_t deadline_misses_ = 0;
-  LatencyHistogram jitter_total_, processing_total_, age_total_;
-  LatencyHistogram jitter_window_, processing_window_, age_window_;
+  TickTiming timing_total_, timing_window_;  // the whole run; the status period
   std::int64_t last_status_ns_ = 0;
-  std::uint64_t heading_published_ = 0, imu_published_ = 0, gps_published_ = 0, status_published_ = 0;
-  std::uint64_t heading_at_last_status_ = 0, imu_at_last_status_ = 0, gps_at_last_status_ = 0;
+  PublishedCounts published_, published_at_last_status_;
   std::uint64_t gps_epochs_processed_ = 0, gps_epochs_forced_ = 0;
   std::uint64_t imu_rejected_ = 0;
   std::vector<std::uint64_t> ring_drops_seen_;

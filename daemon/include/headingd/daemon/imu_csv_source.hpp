@@ -1,6 +1,6 @@
 #pragma once
 // A file source: an IMU CSV (BROAD format) and optionally an NMEA capture on the same time
-// axis (drivers/replay), played into the rings at real-time pace times `speed`. The files
+// axis (drivers/files), played into the rings at real-time pace times `speed`. The files
 // are read completely at construction (errors stop start-up); playing allocates nothing.
 //
 // Samples keep the file's time column as their sensor time (so the estimator sees exactly
@@ -24,7 +24,7 @@ namespace headingd::daemon {
 class ImuCsvSource final : public Source {
  public:
   // `gps_ring` may be null when the configuration has no NMEA file. Throws
-  // replay::CsvError (or core::ConfigError) when a file cannot be read.
+  // files::CsvError (or core::ConfigError) when a file cannot be read.
   ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, std::uint16_t source_index,
                SampleRing<ImuRingEntry>* imu_ring, SampleRing<GpsRingEntry>* gps_ring);
   ~ImuCsvSource() override;

@@ -26,4 +26,7 @@ struct GpsRingEntry {
   std::uint16_t source_index = 0;
 };
 
+// The time the estimator orders an epoch by (core::ImuThenGpsOrder).
+inline std::int64_t sensorTimeNs(const GpsRingEntry& e) { return e.observation.t_ns; }
+
 }  // namespace headingd::daemon

@@ -1,11 +1,11 @@
-#include "headingd/replay/gps_observation_from_fix.hpp"
+#include "headingd/nmea/gps_observation_from_fix.hpp"
 
 #include <chrono>
 #include <numbers>
 
 #include "headingd/core/wmm.hpp"
 
-namespace headingd::replay {
+namespace headingd::nmea {
 namespace {
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
@@ -37,4 +37,4 @@ core::GpsObservation gpsObservationFromFix(const nmea::Fix& fix, std::int64_t t_
   return o;
 }
 
-}  // namespace headingd::replay
+}  // namespace headingd::nmea

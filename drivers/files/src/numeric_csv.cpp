@@ -1,4 +1,4 @@
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
 #include <zlib.h>
 
@@ -8,7 +8,7 @@
 #include <cstring>
 #include <string_view>
 
-namespace headingd::replay {
+namespace headingd::files {
 namespace {
 
 std::vector<std::string_view> splitFields(std::string_view line) {
@@ -121,4 +121,4 @@ NumericCsv readNumericCsv(const std::string& path, const std::vector<std::string
   return csv;
 }
 
-}  // namespace headingd::replay
+}  // namespace headingd::files

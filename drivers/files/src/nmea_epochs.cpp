@@ -1,32 +1,37 @@
-#include "headingd/replay/nmea_epochs.hpp"
+#include "headingd/files/nmea_epochs.hpp"
 
 #include <cmath>
 
 #include "headingd/nmea/comment_filter.hpp"
 #include "headingd/nmea/parser.hpp"
-#include "headingd/replay/gps_observation_from_fix.hpp"
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/nmea/gps_observation_from_fix.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
-namespace headingd::replay {
+namespace headingd::files {
 namespace {
 
 constexpr std::int64_t kDayNs = 86'400'000'000'000;
 
 }  // namespace
 
-NmeaEpochs readNmeaEpochs(const std::string& path, double first_epoch_t_s) {
+NmeaLogFixes readNmeaLogFixes(const std::string& path) {
   const std::string text = readMaybeGzipFile(path);
   std::vector<std::uint8_t> bytes;
   nmea::CommentFilter comments;
   comments.filter({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, bytes);
-
   nmea::Parser parser;
-  std::vector<nmea::FixUpdate> updates;
-  parser.feed(std::span<const std::uint8_t>(bytes), updates);
+  NmeaLogFixes log;
+  parser.feed(std::span<const std::uint8_t>(bytes), log.updates);
   parser.finish();
+  log.counters = parser.counters();
+  return log;
+}
 
+NmeaEpochs readNmeaEpochs(const std::string& path, double first_epoch_t_s) {
+  const NmeaLogFixes log = readNmeaLogFixes(path);
+  const std::vector<nmea::FixUpdate>& updates = log.updates;
   NmeaEpochs result;
-  result.counters = parser.counters();
+  result.counters = log.counters;
   const auto first_epoch_ns = static_cast<std::int64_t>(std::llround(first_epoch_t_s * 1e9));
   std::optional<std::int64_t> first_tod, previous_tod;
   std::int64_t day_offset_ns = 0;
@@ -45,4 +50,4 @@ NmeaEpochs readNmeaEpochs(const std::string& path, double first_epoch_t_s) {
   return result;
 }
 
-}  // namespace headingd::replay
+}  // namespace headingd::files

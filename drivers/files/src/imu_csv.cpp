@@ -1,10 +1,10 @@
-#include "headingd/replay/imu_csv.hpp"
+#include "headingd/files/imu_csv.hpp"
 
 #include <cmath>
 
-#include "headingd/replay/numeric_csv.hpp"
+#include "headingd/files/numeric_csv.hpp"
 
-namespace headingd::replay {
+namespace headingd::files {
 
 std::vector<core::ImuSample> readImuCsv(const std::string& path) {
   const NumericCsv csv =
@@ -32,4 +32,4 @@ std::vector<core::ImuSample> readImuCsv(const std::string& path) {
   return samples;
 }
 
-}  // namespace headingd::replay
+}  // namespace headingd::files

@@ -13,8 +13,18 @@
 
 #include "headingd/core/gps_observation.hpp"
 #include "headingd/nmea/counters.hpp"
+#include "headingd/nmea/parser.hpp"
 
-namespace headingd::replay {
+namespace headingd::files {
+
+// Every fix update of an NMEA log (plain or gzip; '#' comment lines skipped), in file order,
+// with the parser's counters: what readNmeaEpochs places on the IMU axis, and what the
+// daemon's NMEA log source reads its first epoch and date from.
+struct NmeaLogFixes {
+  std::vector<nmea::FixUpdate> updates;
+  nmea::Counters counters;
+};
+NmeaLogFixes readNmeaLogFixes(const std::string& path);
 
 struct NmeaEpochs {
   std::vector<core::GpsObservation> epochs;  // in time order
@@ -24,4 +34,4 @@ struct NmeaEpochs {
 // Throws CsvError (file errors) like the other readers. '#' comment lines are skipped.
 NmeaEpochs readNmeaEpochs(const std::string& path, double first_epoch_t_s = 0.0);
 
-}  // namespace headingd::replay
+}  // namespace headingd::files

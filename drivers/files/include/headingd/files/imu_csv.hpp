@@ -6,11 +6,11 @@
 
 #include "headingd/core/imu_sample.hpp"
 
-namespace headingd::replay {
+namespace headingd::files {
 
 // One sample per data row, in file order (timestamps are not checked here: the estimator's
 // sample gate counts gaps, duplicates and backwards steps). Without mag_* columns every
 // sample has has_mag = false. Throws CsvError on malformed input.
 std::vector<core::ImuSample> readImuCsv(const std::string& path);
 
-}  // namespace headingd::replay
+}  // namespace headingd::files

@@ -1,7 +1,7 @@
 #pragma once
 // Settings of the serial GPS driver, and their loader from the [gps] table of the daemon's
-// TOML file (config/gps.toml documents every key). Errors name the file, the line, the key
-// and what was expected, as core::parseEstimatorParams does, and use its ConfigError.
+// TOML file (config/gps.toml documents every key), read with core::TomlTableReader: errors
+// name the file, the line, the key and what was expected.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -37,8 +37,10 @@ struct SerialGpsConfig {
 std::span<const std::uint32_t> standardBaudRates();
 bool isStandardBaudRate(std::int64_t baud);
 
-// Reads the [gps] table of doc (other tables are not looked at; a missing [gps] gives the
-// defaults). Unknown keys, wrong types and out-of-range values throw core::ConfigError.
+// Reads a [gps] table (null: absent, the defaults). Unknown keys, wrong types and
+// out-of-range values throw core::ConfigError.
+SerialGpsConfig parseGpsTable(const toml::table* gps_table, const std::string& source_name);
+// The [gps] table of doc (other tables are not looked at).
 SerialGpsConfig parseGpsConfig(const toml::table& doc, const std::string& source_name);
 // The same from TOML text; syntax errors throw core::ConfigError with file:line.
 SerialGpsConfig parseGpsConfigText(std::string_view toml_text, const std::string& source_name);

@@ -7,11 +7,11 @@
 #include "headingd/core/gps_observation.hpp"
 #include "headingd/nmea/fix.hpp"
 
-namespace headingd::replay {
+namespace headingd::nmea {
 
 // fix_ok needs a position and a mode other than "no fix"; the height is above the ellipsoid
 // (MSL + geoid separation, in km as the WMM wants it); the decimal year (WMM epoch) comes from
 // the UTC date when the receiver sent one; course and variation in rad.
 core::GpsObservation gpsObservationFromFix(const nmea::Fix& fix, std::int64_t t_ns);
 
-}  // namespace headingd::replay
+}  // namespace headingd::nmea

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace headingd::replay {
+namespace headingd::files {
 
 class CsvError : public std::runtime_error {
  public:
@@ -34,4 +34,4 @@ NumericCsv readNumericCsv(const std::string& path, const std::vector<std::string
 // The whole file, decompressed if it is gzip.
 std::string readMaybeGzipFile(const std::string& path);
 
-}  // namespace headingd::replay
+}  // namespace headingd::files
