@@ -133,7 +133,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   // Henriksson §3.1 also goes back to a gyro-only background attitude whenever the level
   // steps up. headingd does not: that attitude has run on the gyro alone for 5-10 s, and
   // its errors over that time (bias, scale) cost more than the accelerations it undoes
-  // (issue 17: removing it took BROAD from 2.03 to 1.90 deg, at 50 Hz from 3.60 to 2.30 deg,
+  // (removing it took BROAD from 2.03 to 1.90 deg, at 50 Hz from 3.60 to 2.30 deg,
   // and halved the tilt peaks of simulated hand-held motion).
   // The activity level of §3.1 (d_k with hysteresis) is reported; R_k follows what the
   // low-pass left in the measurement instead (gravity_residual.hpp).
@@ -190,7 +190,6 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
   const double before = mag_disturbed_seconds_;
   mag_disturbed_seconds_ = out_.mag_disturbed ? mag_disturbed_seconds_ + dt_s : 0.0;
   const bool onset = before < p_.mag_restore_confirm_s && mag_disturbed_seconds_ >= p_.mag_restore_confirm_s;
-  mag_was_disturbed_ = out_.mag_disturbed;
   if (out_.mag_disturbed) {
     ++mag_disturbed_;
     out_.mag_innovation_rad = m.innovation_rad;

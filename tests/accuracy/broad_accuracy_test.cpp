@@ -3,7 +3,8 @@
 // estimator with default parameters and scored with BROAD's metric (headingd-eval's).
 // Thresholds are our measured RMSE plus a margin of about 15 %, so a change that makes any
 // trial clearly worse fails; the averages, undisturbed and disturbed, must stay at or below
-// VQF's over the same trials (ANCHORS.md; over all 14 that is 1.93 and 3.49 deg).
+// VQF's over the same trials (VQF 9D run on the same files and scored with the same metric;
+// over all 14 that is 1.93 and 3.49 deg).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,7 +29,7 @@ struct Limits {
   double inclination_deg;
 };
 
-// Measured 2026-12-01 with the default EstimatorParams (issue 17: still-block and in-motion
+// Measured 2026-12-01 with the default EstimatorParams (still-block and in-motion
 // gyro bias, R_k from the gravity measurement's residual, no back-tracking, interval-mean
 // sample timing): total / inclination RMSE.
 const std::map<std::string, Limits> kLimits = {
@@ -48,8 +49,8 @@ const std::map<std::string, Limits> kLimits = {
     {"34_disturbed_attached_magnet_3cm", {4.95, 0.89}}, // 4.30 / 0.77
 };
 
-// VQF 9D on each trial (../shared/data/broad/ANCHORS.md), total RMSE: the averages are
-// compared over the trials of the set used.
+// VQF 9D on each trial (run on the same files, scored with BROAD's metric), total RMSE: the
+// averages are compared over the trials of the set used.
 const std::map<std::string, double> kVqfTotalDeg = {
     {"01_undisturbed_slow_rotation_A", 1.99},
     {"03_undisturbed_slow_rotation_C", 1.93},

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "headingd/calib/calibration_error.hpp"
-#include "headingd/calib/misalignment.hpp"
+#include "headingd/calib/ml/misalignment.hpp"
 
 namespace headingd::calib {
 namespace {

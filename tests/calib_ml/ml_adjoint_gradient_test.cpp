@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "headingd/calib/ml_adjoint_gradient.hpp"
-#include "headingd/calib/ml_calibration.hpp"
+#include "headingd/calib/ml/ml_adjoint_gradient.hpp"
+#include "headingd/calib/ml/ml_calibration.hpp"
 #include "ml_cost_fixture.hpp"
 
 namespace headingd::calib {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "headingd/calib/ml_calibration.hpp"
+#include "headingd/calib/ml/ml_calibration.hpp"
 #include "headingd/calib_montecarlo/ks_simulation.hpp"
 
 namespace headingd::calib::test {

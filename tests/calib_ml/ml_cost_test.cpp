@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "headingd/calib/ml_calibration.hpp"
+#include "headingd/calib/ml/ml_calibration.hpp"
 #include "ml_cost_fixture.hpp"
 
 namespace headingd::calib {

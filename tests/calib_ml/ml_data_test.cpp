@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "headingd/calib/ml_data.hpp"
-#include "headingd/calib/ml_ekf.hpp"
+#include "headingd/calib/ml/ml_data.hpp"
+#include "headingd/calib/ml/ml_ekf.hpp"
 
 namespace headingd::calib {
 namespace {

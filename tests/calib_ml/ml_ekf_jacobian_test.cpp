@@ -2,7 +2,7 @@
 // of the measurement models over the orientation deviation η, q = exp(η/2) ⊗ q̃.
 #include <gtest/gtest.h>
 
-#include "headingd/calib/ml_ekf.hpp"
+#include "headingd/calib/ml/ml_ekf.hpp"
 
 namespace headingd::calib {
 namespace {

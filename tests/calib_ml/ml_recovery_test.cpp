@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "headingd/calib/calibration_error.hpp"
-#include "headingd/calib/ml_calibration.hpp"
+#include "headingd/calib/ml/ml_calibration.hpp"
 #include "headingd/calib_montecarlo/ks_simulation.hpp"
 
 namespace headingd::calib {

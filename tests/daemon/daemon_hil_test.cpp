@@ -1,4 +1,4 @@
-// Hardware in the loop, end to end (issue 5 item 9): the headingd binary with its live
+// Hardware in the loop, end to end: the headingd binary with its live
 // sources on real parts -- the IMU on vcan0, driven by can-utils' canplayer from a simulated
 // candump capture, and the GPS on a real pty, fed the simulated NMEA at 9600 baud line rate,
 // one epoch a second -- and a real LCM subscriber that checks the published true heading

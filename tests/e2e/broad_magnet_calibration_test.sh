@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# BROAD's attached-magnet trials (issue 6, item 6): calibrate on the trial's own magnet
+# BROAD's attached-magnet trials: calibrate on the trial's own magnet
 # window with headingd-calibrate, replay the whole trial with --calib, score with
 # headingd-eval. The magnet is on for only part of the trial (README of data/broad), so the
 # calibration must be set aside when it no longer fits (mag_calibration_fit.hpp) and the

@@ -8,11 +8,11 @@
 # correlated over 2 s), read from gps_truth.csv, is RMS 0.38° over seeds 1-30 and beyond 0.5°
 # on 6 of them (seeds 1, 2 and 8 here: +0.61, +0.72, +0.70). Add the consumer IMU's residual
 # magnetometer rotation about z (RMS 0.27° over seeds 1-24) and accelerometer misalignment
-# (mounting yaw, RMS 0.17°), which nothing in this walk can observe, and the issue's 0.5° on
+# (mounting yaw, RMS 0.17°), which nothing in this walk can observe, and a 0.5° bound on
 # every seed lies below the information in the data. So the test asserts the RMS error over
 # seeds 1-8 as well as each seed. Thresholds are what this version achieves with some margin
-# (issue 4 closing note): declination RMS 0.59° / 0.66°, worst 1.13°; mounting yaw RMS 0.20°,
-# worst 0.30° (the issue's 0.5° on every seed).
+# (measured when the test was written): declination RMS 0.59° / 0.66°, worst 1.13°; mounting
+# yaw RMS 0.20°, worst 0.30° (within 0.5° on every seed).
 #
 # Usage: sim_declination_test.sh HEADINGD_SIM HEADINGD_REPLAY; environment SEEDS overrides 1-8.
 set -euo pipefail

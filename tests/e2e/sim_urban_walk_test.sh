@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# urban-walk (issue 4, item 8): ten minutes in town with a 3° local declination anomaly, two
+# urban-walk: ten minutes in town with a 3° local declination anomaly, two
 # buildings (no GPS, disturbed field), street transients; consumer IMU and GPS. True-heading
 # RMSE against the simulator's truth for three configurations of the same runs:
 #   default      Henriksson ch. 4 disturbance handling, declination from WMM + GPS course
@@ -10,7 +10,7 @@
 # (indoors the heading error is dominated by the buildings' fields, whose sign decides
 # whether a better declination helps or hurts there); the mean RMSE stays within 10 % of
 # what was measured on 2026-11-26, 7.80° (7.47° before the ψ_g restore was turned on and the
-# gait mounting yaw stopped using the filter's tilt; issue 4 closing notes).
+# gait mounting yaw stopped using the filter's tilt).
 set -euo pipefail
 sim=$1 replay=$2
 work=$(mktemp -d)

@@ -1,4 +1,4 @@
-// Bounded tilt (issue 17, item 3): through sustained linear acceleration of any direction, up
+// Bounded tilt: through sustained linear acceleration of any direction, up
 // to 8 g and at 0.5-10 Hz, through vigorous hand-held handling and gentle slow rotation, the
 // inclination error stays below 3 deg and is below 1 deg from 5 s after the motion ends; from
 // any initial attitude error the estimator converges at rest within a stated time.

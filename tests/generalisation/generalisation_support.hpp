@@ -1,5 +1,5 @@
 #pragma once
-// Shared by the generalisation tests (issue 17): the World Magnetic Model, simulator runs as
+// Shared by the generalisation tests: the World Magnetic Model, simulator runs as
 // study::Recordings, the estimator run and scored on them, and the BROAD set to use.
 #include <cstdint>
 #include <filesystem>
@@ -41,7 +41,7 @@ inline study::Recording simulated(const sim::Scenario& scenario, std::uint64_t s
 }
 
 // The motion episode of a run with the default estimator: its worst inclination error and
-// the worst from 5 s after the motion's end, the issue's "returns below 1 deg within 5 s".
+// the worst from 5 s after the motion's end, to check that it returns below 1 deg within 5 s.
 inline study::EpisodeScore episode(const study::Recording& r) {
   return study::scoreEpisode(r, study::runEstimator(r, core::EstimatorParams{}), 5.0, 1.0 * kDeg);
 }

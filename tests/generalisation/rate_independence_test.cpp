@@ -1,4 +1,4 @@
-// The estimator behaves the same at any sample rate (issue 17, item 2): BROAD's trials
+// The estimator behaves the same at any sample rate: BROAD's trials
 // resampled to 100 and 50 Hz stay within 10 % of their error at the native 285.7 Hz, and the
 // simulator's motions give the same errors at 50, 100, 200, 285.7 and 400 Hz.
 #include <gtest/gtest.h>

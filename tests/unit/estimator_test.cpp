@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "test_support.hpp"
@@ -411,6 +412,39 @@ TEST(Estimator, IsDeterministic) {
     ASSERT_EQ(std::memcmp(a[i].gyro_bias_rad_s.data(), b[i].gyro_bias_rad_s.data(), 3 * sizeof(double)), 0) << i;
     ASSERT_EQ(std::memcmp(&a[i].mag_innovation_rad, &b[i].mag_innovation_rad, sizeof(double)), 0) << i;
   }
+}
+
+TEST(Estimator, ACopyCarriesOnWithItsOwnParameters) {
+  // The parts that read the parameters (gyro bias, rest detector, activity level) hold their
+  // own copies: a copied Estimator goes on exactly like one never copied, even when the
+  // object it was copied from is replaced by one with other parameters.
+  const Scenario sc = makeScenario(71, 4.0, 10.0, 1.5);
+  EstimatorParams other;
+  other.bias_walk_rad_s_per_sqrt_s *= 100.0;
+  other.bias_motion_time_constant_s /= 10.0;
+  other.rest_min_duration_s /= 3.0;
+  other.disturbance_up_to_walking /= 100.0;
+  std::optional<Estimator> original(std::in_place);
+  Estimator reference;
+  const std::size_t half = sc.samples.size() / 2;
+  for (std::size_t i = 0; i < half; ++i) {
+    original->process(sc.samples[i]);
+    reference.process(sc.samples[i]);
+  }
+  Estimator copy = *original;
+  original.emplace(other);
+  for (std::size_t i = half; i < sc.samples.size(); ++i) {
+    original->process(sc.samples[i]);
+    copy.process(sc.samples[i]);
+    reference.process(sc.samples[i]);
+    const EstimatorOutput& a = copy.output();
+    const EstimatorOutput& b = reference.output();
+    ASSERT_EQ(std::memcmp(a.q_nb.coeffs().data(), b.q_nb.coeffs().data(), 4 * sizeof(double)), 0) << i;
+    ASSERT_EQ(std::memcmp(a.gyro_bias_rad_s.data(), b.gyro_bias_rad_s.data(), 3 * sizeof(double)), 0) << i;
+    ASSERT_EQ(a.at_rest, b.at_rest) << i;
+    ASSERT_EQ(a.motion_level, b.motion_level) << i;
+  }
+  EXPECT_EQ(copy.counters().bias_still_blocks, reference.counters().bias_still_blocks);
 }
 
 TEST(Estimator, AttitudeFromGravityAndField) {

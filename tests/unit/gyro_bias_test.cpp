@@ -117,7 +117,7 @@ TEST(GyroBiasEstimator, MotionIsNotRest) {
 
 TEST(GyroBiasEstimator, ASlowTurnIsMeasuredNotLearnedAsBias) {
   // A slow steady turn (1 deg/s) about an axis that gravity sees and one that only the field
-  // sees: a gyro-only rest test would take the turn for bias (the issue-17 failure); the
+  // sees: a gyro-only rest test would take the turn for bias (and tilt by degrees); the
   // still blocks take the turn off.
   for (const Vec3& axis : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitZ()), Vec3(Vec3(1.0, -1.0, 2.0).normalized())}) {
     const EstimatorParams p;

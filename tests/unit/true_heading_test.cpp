@@ -1,4 +1,4 @@
-// The pieces of the true-heading pipeline (issue 4): noise floor, mounting yaw from the
+// The pieces of the true-heading pipeline: noise floor, mounting yaw from the
 // gait, declination from course minus heading (Henriksson eqs. 5.1-5.2), fusion of sources.
 #include <gtest/gtest.h>
 

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Which mechanism of the estimator lets the tilt go, motion by motion (issue 17): the same
+# Which mechanism of the estimator lets the tilt go, motion by motion: the same
 # simulated motions and BROAD trials through the estimator of a baseline commit and of this
 # checkout, each with one mechanism switched off or changed, scored by headingd-study.
 #
 # Usage: estimator-mechanisms.sh [--baseline COMMIT] [--build DIR] [--seeds N]
-#   COMMIT  the estimator before issue 17 (default c9cad42). It is built in a temporary git
+#   COMMIT  the estimator before the still-block gyro bias and the residual-based R_k
+#           (default c9cad42). It is built in a temporary git
 #           worktree with this checkout's simulator and study tool (tools/sim, tools/study),
 #           so both estimators see the same motions.
 #   DIR     this checkout's build folder with tools/study/headingd-study (default build)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The repository is self-contained (issue 11): a clone with nothing beside it (no ../shared)
+# The repository is self-contained: a clone with nothing beside it (no ../shared)
 # builds and passes every test that reads real data, on the repository's subsets in tests/data
 # (cmake/test_data.cmake). CTest runs this as `selfcontained.clone_without_shared`.
 #

@@ -1,5 +1,5 @@
 // headingd-study: the estimator on BROAD trials and simulated motions, at any sample rate,
-// scored as tables (issue 17). Runs in memory, two jobs at a time.
+// scored as tables. Runs in memory, two jobs at a time.
 //
 //   headingd-study broad [--dir DIR] [--rate HZ ...] [--set key=value ...] [--config TOML]
 //   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--set ...]

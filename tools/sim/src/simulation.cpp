@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "headingd/sim/field_model.hpp"
+#include "headingd/sim/trajectory_generator.hpp"
 
 namespace headingd::sim {
 

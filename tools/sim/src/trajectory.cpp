@@ -1,75 +1,17 @@
 #include "headingd/sim/trajectory.hpp"
 
-#include <array>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
-#include "headingd/sim/gait.hpp"
-#include "headingd/sim/scripted_trajectory.hpp"
-
 namespace headingd::sim {
-
-namespace {
 
 using core::Quat;
 using core::Vec3;
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-
-// A smooth zero-mean signal: a few slow sinusoids with seeded amplitudes, frequencies and
-// phases. Smooth, so it can modulate speed and heading without jerky accelerations.
-class SlowWander {
- public:
-  SlowWander(Rng& rng, double amplitude_lo, double amplitude_hi, double freq_lo_hz, double freq_hi_hz) {
-    for (auto& c : terms_) {
-      c = {rng.uniform(amplitude_lo, amplitude_hi), 2.0 * kPi * rng.uniform(freq_lo_hz, freq_hi_hz),
-           rng.uniform(0.0, 2.0 * kPi)};
-    }
-  }
-  double operator()(double t) const {
-    double sum = 0.0;
-    for (const auto& c : terms_) sum += c[0] * std::sin(c[1] * t + c[2]);
-    return sum;
-  }
-
- private:
-  std::array<std::array<double, 3>, 3> terms_{};
-};
-
-// Heading from all turns that have started by t (each a smootherstep in time).
-double turnedHeadingRad(const Scenario& s, double t) {
-  double heading = s.initial_heading_deg * kDeg;
-  double start = 0.0;
-  for (const Phase& p : s.phases) {
-    for (const Turn& turn : p.turns) {
-      const double s01 = turn.duration_s > 0.0 ? (t - start - turn.start_s) / turn.duration_s
-                                                : (t >= start + turn.start_s ? 1.0 : 0.0);
-      heading += turn.angle_deg * kDeg * smootherstep(s01);
-    }
-    start += p.duration_s;
-  }
-  return heading;
+void requirePositiveRateAndPhases(const Scenario& scenario, double rate_hz) {
+  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw std::invalid_argument("IMU rate must be positive");
+  if (scenario.phases.empty()) throw std::invalid_argument("scenario has no phases");
 }
-
-// Gait and posture at t, blended from the previous phase's during this phase's transition.
-struct PhaseState {
-  GaitParams gait;
-  bool changing_posture = false;
-};
-
-PhaseState phaseState(const Scenario& s, double t) {
-  const PhaseTime pt = phaseAt(s, t);
-  const Activity current = s.phases[pt.index].activity;
-  GaitParams target = gaitParams(current);
-  if (pt.index == 0 || pt.since_start_s >= target.transition_s) return {target, false};
-  const Activity previous = s.phases[pt.index - 1].activity;
-  return {blend(gaitParams(previous), target, smootherstep(pt.since_start_s / target.transition_s)),
-          previous != current};
-}
-
-}  // namespace
 
 Trajectory kinematicTrajectory(const Scenario& scenario, double rate_hz, const std::vector<Quat>& attitude,
                                const std::vector<Vec3>& position) {
@@ -91,78 +33,6 @@ Trajectory kinematicTrajectory(const Scenario& scenario, double rate_hz, const s
     s.phase = pt.index;
     s.activity = scenario.phases[pt.index].activity;
     s.indoor = scenario.phases[pt.index].indoor;
-  }
-  return out;
-}
-
-Trajectory generateTrajectory(const Scenario& scenario, double rate_hz, Rng rng) {
-  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw std::invalid_argument("IMU rate must be positive");
-  if (scenario.phases.empty()) throw std::invalid_argument("scenario has no phases");
-  if (scenario.scripted) return generateScriptedTrajectory(scenario, rate_hz, rng);
-  const double dt = 1.0 / rate_hz;
-  const auto rows = static_cast<std::size_t>(std::floor(scenario.durationS() * rate_hz + 1e-9)) + 1;
-
-  const SlowWander speed_modulation(rng, 0.005, 0.015, 0.01, 0.08);  // a few % of speed
-  const SlowWander heading_wander(rng, 0.5 * kDeg, 1.0 * kDeg, 0.005, 0.05);
-
-  // One extra sample before t = 0 and after the end, for the central differences.
-  const std::size_t n = rows + 2;
-  std::vector<Vec3> position(n);
-  std::vector<Quat> attitude(n);
-  std::vector<double> path_heading(n);
-  std::vector<PhaseState> phase_state(n);
-  Vec3 path = Vec3::Zero();  // integrated horizontal path, NED
-  Vec3 previous_velocity = Vec3::Zero();
-  double step_phase = 0.0;  // radians, one cycle per step
-  double previous_step_hz = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = (static_cast<double>(i) - 1.0) * dt;
-    const PhaseState ps = phaseState(scenario, t);
-    const GaitParams& g = ps.gait;
-    const double modulation = speed_modulation(t);
-    // Wandering off a straight line only happens while going somewhere.
-    const double locomotion = std::min(1.0, g.speed_mps / 1.0);
-    const double heading = turnedHeadingRad(scenario, t) + locomotion * heading_wander(t);
-    const double speed = g.speed_mps * (1.0 + modulation);
-    const double step_hz = g.step_hz * (1.0 + 0.5 * modulation);
-    const Vec3 velocity(speed * std::cos(heading), speed * std::sin(heading), 0.0);
-    if (i > 0) {
-      path += 0.5 * dt * (previous_velocity + velocity);  // trapezoid
-      step_phase += kPi * dt * (previous_step_hz + step_hz);
-    }
-    previous_velocity = velocity;
-    previous_step_hz = step_hz;
-
-    // Gait excursions in the heading frame (forward, right, down), then in NED.
-    const Vec3 excursion_h(g.forward_m * std::sin(step_phase), g.lateral_m * std::sin(0.5 * step_phase),
-                           g.vertical_m * std::cos(step_phase));
-    const Vec3 excursion = core::headingRotation(heading) * excursion_h;
-    position[i] = path + excursion + Vec3(0.0, 0.0, -g.height_m);
-
-    const double sway = 2.0 * kPi * kSwayHz * t;
-    const double yaw = heading + g.osc_yaw_deg * kDeg * std::cos(0.5 * step_phase);
-    const double pitch = (g.pitch_deg + g.osc_pitch_deg * std::sin(step_phase + 0.25 * kPi) +
-                          g.sway_deg * std::sin(sway)) * kDeg;
-    const double roll = (g.roll_deg + g.osc_roll_deg * std::sin(0.5 * step_phase) +
-                         g.sway_deg * std::sin(1.3 * sway + 1.0)) * kDeg;
-    attitude[i] = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
-                   Eigen::AngleAxisd(roll, Vec3::UnitX()))
-                      .normalized();
-    path_heading[i] = heading;
-    phase_state[i] = ps;
-  }
-
-  // The person starts at the origin (the ground under the IMU at t = 0).
-  const Vec3 origin(position[1].x(), position[1].y(), 0.0);
-  for (Vec3& p : position) p -= origin;
-
-  Trajectory out = kinematicTrajectory(scenario, rate_hz, attitude, position);
-  for (std::size_t k = 0; k < out.states.size(); ++k) {
-    const std::size_t i = k + 1;
-    TruthState& s = out.states[k];
-    s.path_heading_rad = path_heading[i];
-    const double turn_rate = std::abs(core::wrapAngle(path_heading[i + 1] - path_heading[i - 1])) / (2.0 * dt);
-    s.moving = phase_state[i].gait.speed_mps > 0.05 || turn_rate > 1.0 * kDeg || phase_state[i].changing_posture;
   }
   return out;
 }

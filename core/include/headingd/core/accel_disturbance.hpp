@@ -33,7 +33,7 @@ class MotionLevelSelector {
   MotionLevel level() const { return level_; }
 
  private:
-  const EstimatorParams& p_;
+  EstimatorParams p_;  // a copy: the owner may be copied or moved (gyro_bias_estimator.hpp)
   MotionLevel level_ = MotionLevel::kStanding;
 };
 

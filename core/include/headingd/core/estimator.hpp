@@ -76,6 +76,8 @@ void forEachCounter(const EstimatorCounters& c, Fn&& fn) {
   fn("state_recoveries", c.state_recoveries);
 }
 
+// A value: a copy carries on independently from the same state (its parts hold their own
+// copies of the parameters, never references into this object).
 class Estimator {
  public:
   explicit Estimator(const EstimatorParams& params = {});
@@ -90,7 +92,7 @@ class Estimator {
   const AttitudeEkf& ekf() const { return ekf_; }
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
-  // strength and dip tests of the disturbance detection (Henriksson §4.2, issue 4).
+  // strength and dip tests of the disturbance detection (Henriksson §4.2).
   void setReferenceField(double field_norm_uT, double inclination_rad) {
     mag_disturbance_.setReference(field_norm_uT, inclination_rad);
   }
@@ -123,7 +125,6 @@ class Estimator {
   std::uint64_t mag_no_heading_ = 0;
   std::uint64_t mag_disturbed_ = 0;
   std::uint64_t mag_heading_restores_ = 0;
-  bool mag_was_disturbed_ = false;
   double mag_disturbed_seconds_ = 0.0;
   std::uint64_t state_recoveries_ = 0;
 };

@@ -10,13 +10,13 @@
 // steps R between three activity levels chosen by d_k; headingd keeps those levels (with
 // the thesis' d_k thresholds, which eq. 3.4 writes with |g| = 9.81, i.e. in (m/s²)²) as a
 // reported activity, and sets R from what is left in the low-passed measurement
-// (gravity_residual.hpp, issue 17).
+// (gravity_residual.hpp says why: R stepped by d_k let simulated shaking tilt it by degrees).
 #include <cstdint>
 
 namespace headingd::core {
 
 struct EstimatorParams {
-  // --- Sample handling (issue 3, item 7) ---
+  // --- Sample handling (sample_gate.hpp; not from a paper) ---
   // Samples further apart than this are a gap: the gyro is not integrated across it.
   double max_sample_gap_s = 0.1;
   // Readings beyond these (per axis) are corrupt and skipped: far above any body-worn
@@ -43,7 +43,7 @@ struct EstimatorParams {
   // 2 σ_a / (g σ_ω) (the tilt's random walk of (σ_ω dt/2)² per sample against σ_a/g per
   // sample): 1.3 s, the same at every sample rate. BROAD is flat from 0.03 to 0.08 (1.97 /
   // 1.98 deg total); the simulated consumer IMUs, whose gyros drift more, want the faster
-  // correction (issue 17: shaking 0.84 -> 0.71 deg inclination; at 0.12 BROAD's inclination
+  // correction (simulated shaking 0.84 -> 0.71 deg inclination; at 0.12 BROAD's inclination
   // starts to suffer).
   double gyro_noise_rad_s = 0.08;
   // Rate-proportional part (scale-factor and axis-misalignment errors of MEMS gyros, which
@@ -59,7 +59,7 @@ struct EstimatorParams {
   double accel_noise_m_s2 = 0.5;
   // R_k = (σ² + κ d) I with d the spread of the low-passed measurement about its own slower
   // low-pass (time constant below): κ. On BROAD 5 / 10 / 20 give inclination 0.77 / 0.74 /
-  // 0.71 deg; the simulated shaking wants less, hand-held handling more (issue 17).
+  // 0.71 deg; the simulated shaking wants less, hand-held handling more.
   double accel_residual_gain = 10.0;
   // BROAD and the simulator are flat from 1 to 4 s.
   double accel_residual_time_constant_s = 2.0;
@@ -85,7 +85,7 @@ struct EstimatorParams {
 
   // --- Magnetometer heading observer (Henriksson eq. 4.2) ---
   // K = 1 - exp(-dt/τ): the magnetometer pulls the heading with this time constant. Chosen on
-  // the 14 shared BROAD trials (issue 17; 6 / 10 / 15 / 20 s: 2.11 / 1.92 / 1.86 / 1.90 deg
+  // the 14 BROAD trials of the full set (6 / 10 / 15 / 20 s: 2.11 / 1.92 / 1.86 / 1.90 deg
   // total, the same order at 100 and 50 Hz); the simulated urban walk agrees (10 s 6.9 deg,
   // 15 s 6.0 deg true-heading RMSE). The 10 s used before was chosen with held-out trials.
   double mag_heading_time_constant_s = 15.0;
@@ -105,7 +105,7 @@ struct EstimatorParams {
   // §4.2), the dip from the model's inclination by this much. Both are tested on the
   // low-passes of eq. 4.5 (time constant above), not on single samples: a consumer
   // magnetometer's noise (~1.6 µT per sample) would otherwise need thresholds so wide that
-  // a building's steady offset passes. Measured on the simulator (issue 4 note): 15 µT /
+  // a building's steady offset passes. Measured on the simulator: 15 µT /
   // 10° on single samples gave urban-walk 11.6° RMSE; 5 µT / 4° on the low-passes 7.5°,
   // with the §6.3 declination runs unchanged.
   double mag_max_reference_norm_deviation_uT = 5.0;

@@ -1,5 +1,5 @@
 #pragma once
-// How the IMU is turned about the body's vertical axis, from the gait (issue 4, item 5).
+// How the IMU is turned about the body's vertical axis, from the gait.
 //
 // While a person walks, each step accelerates and brakes the trunk along its forward axis
 // (the forward-backward component at the step rate), while the sideways sway is smaller

@@ -7,7 +7,7 @@
 // raw samples. But the EKF is fed the low-passed vector, not the raw samples: shaking at a
 // few Hz makes d_k huge although the low-pass has taken nearly all of it out, and the long
 // time constant of the top level then turns any gyro bias or noise into degrees of tilt
-// (issue 17: 6-30 deg of inclination in 60 s of simulated shaking; a slow hand-held motion
+// (6-30 deg of inclination in 60 s of simulated shaking; a slow hand-held motion
 // whose accelerations pass the low-pass needs the large R, and gets it). What is left in the
 // measurement y is measured directly: y wanders about its own slower low-pass z (the same
 // gyro-frame filter applied once more) as far as the accelerations the first low-pass did

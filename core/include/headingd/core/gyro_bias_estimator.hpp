@@ -60,7 +60,10 @@ class GyroBiasEstimator {
  private:
   void clampBias();
 
-  const EstimatorParams& p_;
+  // A copy, not a reference to the owner's parameters: the Estimator that holds this one
+  // stays an ordinary value (copied or moved, it carries on from the same state), where a
+  // reference would keep pointing into the object it was copied from. A few hundred bytes.
+  EstimatorParams p_;
   RestDetector rest_;
   Vec3 bias_ = Vec3::Zero();
   Mat3 P_;

@@ -1,6 +1,6 @@
 #pragma once
 // True heading: the attitude estimator plus what GPS and the World Magnetic Model add
-// (issue 4): the WMM field at the GPS position for the disturbance tests (Henriksson §4.2),
+// to it: the WMM field at the GPS position for the disturbance tests (Henriksson §4.2),
 // the mounting yaw from the gait, and the declination from WMM, GPS course (ch. 5) and the
 // receiver's magnetic variation. Pure and deterministic like the Estimator; the caller feeds
 // IMU samples and GPS epochs in time order on one time axis.

@@ -1,6 +1,7 @@
 #pragma once
 // Orientation error split into heading and inclination, as BROAD scores it
-// (Laidig et al. 2021, broad_utils.calculateRMSE; see ../shared/data/broad/README.md).
+// (Laidig et al. 2021, "BROAD—A Benchmark for Robust Inertial Orientation Estimation",
+// Data 6(7):72, and its broad_utils.calculateRMSE).
 #include <cstddef>
 
 #include "headingd/core/quaternion.hpp"

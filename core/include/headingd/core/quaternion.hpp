@@ -1,9 +1,9 @@
 #pragma once
 // Quaternion algebra for the attitude EKF.
 //
-// Convention (DESIGN.md): Hamilton quaternions, q_nb maps body (sensor) vectors into NED:
-// v_n = q_nb ⊗ v_b ⊗ q_nb*. The EKF keeps the quaternion as a 4-vector (w, x, y, z),
-// the ordering Henriksson (2013) uses for q_k = (q_0, q_1, q_2, q_3).
+// Convention, the same throughout headingd: Hamilton quaternions, q_nb maps body (sensor)
+// vectors into NED: v_n = q_nb ⊗ v_b ⊗ q_nb*. The EKF keeps the quaternion as a 4-vector
+// (w, x, y, z), the ordering Henriksson (2013) uses for q_k = (q_0, q_1, q_2, q_3).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 

@@ -24,7 +24,7 @@
 //
 // Why: a slow steady turn or a hand's slow drift (1-3 deg/s) keeps the gyro and the
 // accelerometer steady; taking its mean rate as bias (what a gyro-only rest test does) leaves
-// a bias error of that rate, which the tilt filter turns into degrees of tilt (issue 17).
+// a bias error of that rate, which the tilt filter turns into degrees of tilt.
 // Gravity and the field measure the turn itself. Nothing here compares with the current bias
 // estimate: a test against the estimate (|ω̄ - b̂| small) locks a wrong estimate in, since
 // the true rest then fails it. Without a usable field a turn about the vertical is not seen
@@ -85,7 +85,7 @@ class RestDetector {
   // fit one rotation.
   bool measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) const;
 
-  const EstimatorParams& p_;
+  EstimatorParams p_;  // a copy: the owner may be copied or moved (gyro_bias_estimator.hpp)
   SteadyVector gyro_;
   SteadyVector accel_;
   SteadyVector mag_;

@@ -1,5 +1,5 @@
 #pragma once
-// Decides whether a sample can be used and over which period (issue 3, item 7). The sample
+// Decides whether a sample can be used and over which period. The sample
 // period always comes from the timestamps, never from a nominal rate.
 #include <cstdint>
 

@@ -1,5 +1,6 @@
 #pragma once
-// The two clocks the daemon reads, in int64 nanoseconds (DESIGN.md: time is int64 ns).
+// The two clocks the daemon reads, in int64 nanoseconds (as every time inside headingd:
+// integer sums and differences are exact, with no rounding that grows with uptime).
 #include <cstdint>
 #include <ctime>
 

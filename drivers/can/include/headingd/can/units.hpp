@@ -1,6 +1,6 @@
 #pragma once
 // Unit strings found in DBC files, and the factor that turns a value in that unit into the
-// SI unit headingd uses inside (rad/s, m/s², µT; see DESIGN.md).
+// SI unit headingd uses inside (rad/s, m/s², µT), which the estimator's parameters assume.
 #include <optional>
 #include <string_view>
 

@@ -1,5 +1,5 @@
 #pragma once
-// IMU recordings in the BROAD CSV format (../shared/data/broad/README.md): header line,
+// IMU recordings in the BROAD CSV format (tests/data/broad/README.md): header line,
 // t [s], gyr_x..z [rad/s], acc_x..z [m/s²], mag_x..z [µT]; other columns ignored.
 #include <string>
 #include <vector>

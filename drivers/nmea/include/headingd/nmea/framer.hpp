@@ -1,7 +1,8 @@
 #pragma once
 // Byte stream in, checksummed NMEA 0183 lines out. Pure: no I/O, no clock; the caller pushes
 // whatever chunks its serial port or file gives it, and gets the same lines whatever the
-// chunking. Every byte that does not end up in a good line is counted (DESIGN.md, Errors).
+// chunking. Every byte that does not end up in a good line is counted for the status
+// report: bad input is never dropped silently.
 #include <cstddef>
 #include <cstdint>
 #include <optional>

@@ -14,7 +14,7 @@ namespace headingd::calib_montecarlo {
 enum class KsVariant {
   kShort,  // K&S §8: 100 still + 300 rotating samples (4 s)
   kLong,   // 100 still + 2900 rotating samples (30 s), slower turns, as a person calibrates
-  kFiveMinutes,  // 100 still + 29900 rotating (5 min), for issue 6 item 7's timing
+  kFiveMinutes,  // 100 still + 29900 rotating (5 min): times the ML step on a recording's length
 };
 // Throws std::invalid_argument for anything but "short", "long" and "5min".
 KsVariant parseVariant(std::string_view name);

@@ -1,6 +1,6 @@
 #pragma once
 // Scenarios of a sensor handled, shaken or turned slowly, for the estimator's generalisation
-// studies (issue 17): sustained linear acceleration with little rotation, vigorous hand-held
+// studies: sustained linear acceleration with little rotation, vigorous hand-held
 // handling, and gentle slow rotation. Unlike the walking person's scenarios, their motion is
 // drawn from the seed (attitudes, shake direction, frequency and amplitude), so a seed sweep is
 // a sweep over motions. Each begins and ends with the sensor held still, so that an estimator

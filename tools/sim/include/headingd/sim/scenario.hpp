@@ -1,6 +1,6 @@
 #pragma once
 // A scenario: what the person does, phase by phase, where the magnetic field is disturbed
-// and how good the GPS sky is. Pure data; trajectory.hpp turns it into motion.
+// and how good the GPS sky is. Pure data; trajectory_generator.hpp turns it into motion.
 #include <cstddef>
 #include <cstdint>
 #include <optional>

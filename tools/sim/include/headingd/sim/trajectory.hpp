@@ -1,19 +1,17 @@
 #pragma once
-// The true motion of the person, sampled at the IMU rate: attitude of the body, position,
-// velocity and acceleration in a local NED frame whose origin is the ground under the
-// starting point.
+// The true motion, sampled at the IMU rate: attitude of the body, position, velocity and
+// acceleration in a local NED frame, as the generators make it (a walking person:
+// walking_trajectory.hpp; a sensor turned by hand: scripted_trajectory.hpp; either by the
+// scenario: trajectory_generator.hpp). What they share is here.
 //
-// Consistency: positions come from integrating the speed along the path plus the gait
-// excursions; velocity and acceleration are the central first and second differences of
-// those positions, so GPS positions, velocities and the accelerometer all describe the same
-// motion. Attitudes are built from zyx Euler angles (yaw = path heading + trunk rotation,
-// pitch and roll = posture + gait oscillation + sway); the gyroscope is derived from
-// consecutive attitudes (imu_model.hpp), never from Euler rates.
+// Consistency: velocity and acceleration are the central first and second differences of
+// the positions, so GPS positions, velocities and the accelerometer all describe the same
+// motion; the gyroscope is derived from consecutive attitudes (imu_model.hpp), never from
+// Euler rates.
 #include <cstddef>
 #include <vector>
 
 #include "headingd/core/quaternion.hpp"
-#include "headingd/sim/rng.hpp"
 #include "headingd/sim/scenario.hpp"
 
 namespace headingd::sim {
@@ -47,9 +45,7 @@ struct Trajectory {
 Trajectory kinematicTrajectory(const Scenario& scenario, double rate_hz, const std::vector<core::Quat>& attitude,
                                const std::vector<core::Vec3>& position);
 
-// `rng` gives the small person-to-person and step-to-step variations (speed and cadence
-// modulation, heading wander when walking "straight"). Throws std::invalid_argument for a
-// non-positive rate or an empty scenario.
-Trajectory generateTrajectory(const Scenario& scenario, double rate_hz, Rng rng);
+// Throws std::invalid_argument for a non-positive rate or a scenario without phases.
+void requirePositiveRateAndPhases(const Scenario& scenario, double rate_hz);
 
 }  // namespace headingd::sim

@@ -22,7 +22,7 @@ struct Recording {
   std::size_t size() const { return samples.size(); }
 };
 
-// A BROAD trial (../shared/data/broad/README.md): its ENU reference turned into NED.
+// A BROAD trial (format: tests/data/broad/README.md): its ENU reference turned into NED.
 Recording readBroadTrial(const std::string& path);
 
 // A simulator run: the true sensor attitude with the declination taken out of its heading.

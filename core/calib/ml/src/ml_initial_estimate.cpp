@@ -1,4 +1,4 @@
-#include "headingd/calib/ml_initial_estimate.hpp"
+#include "headingd/calib/ml/ml_initial_estimate.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -7,10 +7,10 @@
 
 #include "headingd/calib/calibration_error.hpp"
 #include "headingd/calib/ellipsoid_fit.hpp"
-#include "headingd/calib/inclination_ekf.hpp"
-#include "headingd/calib/misalignment.hpp"
-#include "headingd/calib/ml_data.hpp"
-#include "headingd/calib/ml_stationary.hpp"
+#include "headingd/calib/ml/inclination_ekf.hpp"
+#include "headingd/calib/ml/misalignment.hpp"
+#include "headingd/calib/ml/ml_data.hpp"
+#include "headingd/calib/ml/ml_stationary.hpp"
 
 namespace headingd::calib {
 

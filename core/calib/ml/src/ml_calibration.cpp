@@ -1,4 +1,4 @@
-#include "headingd/calib/ml_calibration.hpp"
+#include "headingd/calib/ml/ml_calibration.hpp"
 
 #include <ceres/autodiff_first_order_function.h>
 #include <ceres/gradient_problem.h>
@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "headingd/calib/calibration_error.hpp"
-#include "headingd/calib/ml_adjoint_gradient.hpp"
+#include "headingd/calib/ml/ml_adjoint_gradient.hpp"
 
 namespace headingd::calib {
 

@@ -10,7 +10,7 @@
 #include <span>
 
 #include "headingd/calib/dip_sign.hpp"
-#include "headingd/calib/ml_parameters.hpp"
+#include "headingd/calib/ml/ml_parameters.hpp"
 #include "headingd/core/imu_sample.hpp"
 
 namespace headingd::calib {

@@ -2,9 +2,9 @@
 // The exact gradient of the ML cost (Kok & Schön 2016 eq. 6) by reverse-mode differentiation
 // (ml_reverse_scalar.hpp) through the EKF of ml_likelihood.hpp, one step at a time: all 34
 // derivatives for about 20 cost evaluations' worth of work, where the Jets take some 65 and
-// forward differences 35 (issue 6 item 2). Same value and gradient as the Jets.
-#include "headingd/calib/ml_data.hpp"
-#include "headingd/calib/ml_parameters.hpp"
+// forward differences 35. Same value and gradient as the Jets.
+#include "headingd/calib/ml/ml_data.hpp"
+#include "headingd/calib/ml/ml_parameters.hpp"
 
 namespace headingd::calib {
 

@@ -36,7 +36,7 @@ struct MlData {
   std::size_t initial_average_samples = 10;
   // The dip's sign known from the place (dip_sign.hpp): the likelihood refuses the mirror.
   DipSign expected_dip_sign = DipSign::kUnknown;
-  // Bad input, counted (DESIGN.md: never silently dropped).
+  // Bad input, counted so that the caller can report it, never silently dropped.
   std::size_t dropped_non_finite = 0;  // samples with a non-finite gyro or accelerometer
   std::size_t mag_non_finite = 0;      // samples kept without their magnetometer
   std::size_t time_gaps = 0;           // dt ≤ 0 or above max_dt_s: no prediction across it

@@ -1,4 +1,4 @@
-#include "headingd/calib/ml_stationary.hpp"
+#include "headingd/calib/ml/ml_stationary.hpp"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "headingd/calib/ml_parameters.hpp"
+#include "headingd/calib/ml/ml_parameters.hpp"
 
 #include <Eigen/Cholesky>
 #include <stdexcept>

@@ -7,9 +7,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "headingd/calib/ml_data.hpp"
-#include "headingd/calib/ml_ekf.hpp"
-#include "headingd/calib/ml_parameters.hpp"
+#include "headingd/calib/ml/ml_data.hpp"
+#include "headingd/calib/ml/ml_ekf.hpp"
+#include "headingd/calib/ml/ml_parameters.hpp"
 
 namespace headingd::calib {
 

@@ -13,7 +13,7 @@
 #include <array>
 #include <cmath>
 
-#include "headingd/calib/ml_ekf.hpp"
+#include "headingd/calib/ml/ml_ekf.hpp"
 #include "headingd/core/quaternion.hpp"
 
 namespace headingd::calib {

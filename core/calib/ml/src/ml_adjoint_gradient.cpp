@@ -1,14 +1,14 @@
-#include "headingd/calib/ml_adjoint_gradient.hpp"
+#include "headingd/calib/ml/ml_adjoint_gradient.hpp"
 
 // ml_reverse_scalar.hpp first: its NumTraits must be seen before Eigen uses the scalar.
-#include "headingd/calib/ml_reverse_scalar.hpp"
+#include "headingd/calib/ml/ml_reverse_scalar.hpp"
 //
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
-#include "headingd/calib/ml_likelihood.hpp"
+#include "headingd/calib/ml/ml_likelihood.hpp"
 
 namespace headingd::calib {
 

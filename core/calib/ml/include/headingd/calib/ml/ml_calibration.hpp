@@ -11,17 +11,17 @@
 // (ceres::GradientProblemSolver). Jets and numerical gradients of the same cost
 // (ceres::NumericDiffFirstOrderFunction) stay selectable, to measure what each saves.
 //
-// No clocks here (DESIGN.md: core is pure): the callers time the two steps
-// (prepareMaximumLikelihood, refineMaximumLikelihood) themselves.
+// No clocks here (pure like core: the same data give the same calibration): the callers
+// time the two steps (prepareMaximumLikelihood, refineMaximumLikelihood) themselves.
 #include <cstddef>
 #include <functional>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "headingd/calib/ml_initial_estimate.hpp"
-#include "headingd/calib/ml_likelihood.hpp"
-#include "headingd/calib/ml_parameters.hpp"
+#include "headingd/calib/ml/ml_initial_estimate.hpp"
+#include "headingd/calib/ml/ml_likelihood.hpp"
+#include "headingd/calib/ml/ml_parameters.hpp"
 
 namespace headingd::calib {
 

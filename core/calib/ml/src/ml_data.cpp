@@ -1,4 +1,4 @@
-#include "headingd/calib/ml_data.hpp"
+#include "headingd/calib/ml/ml_data.hpp"
 
 #include <cmath>
 #include <stdexcept>

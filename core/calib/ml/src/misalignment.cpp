@@ -1,4 +1,4 @@
-#include "headingd/calib/misalignment.hpp"
+#include "headingd/calib/ml/misalignment.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -5,7 +5,7 @@
 // comes from the accelerometer.
 #include <vector>
 
-#include "headingd/calib/ml_data.hpp"
+#include "headingd/calib/ml/ml_data.hpp"
 
 namespace headingd::calib {
 

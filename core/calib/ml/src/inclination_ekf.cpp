@@ -1,6 +1,6 @@
-#include "headingd/calib/inclination_ekf.hpp"
+#include "headingd/calib/ml/inclination_ekf.hpp"
 
-#include "headingd/calib/ml_likelihood.hpp"
+#include "headingd/calib/ml/ml_likelihood.hpp"
 
 namespace headingd::calib {
 
