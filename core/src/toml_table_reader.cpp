@@ -32,10 +32,14 @@ const toml::table* tableOf(const toml::table& doc, std::string_view name, const 
 }
 
 void rejectUnknownTables(const toml::table& doc, const std::string& source, std::initializer_list<const char*> names) {
+  rejectUnknownTables(doc, source, std::vector<std::string>(names.begin(), names.end()));
+}
+
+void rejectUnknownTables(const toml::table& doc, const std::string& source, const std::vector<std::string>& names) {
   std::string expected;
-  for (const char* t : names) expected += (expected.empty() ? "[" : ", [") + std::string(t) + "]";
+  for (const std::string& t : names) expected += (expected.empty() ? "[" : ", [") + t + "]";
   for (auto&& [key, node] : doc) {
-    const bool known = std::any_of(names.begin(), names.end(), [&](const char* t) { return key.str() == t; });
+    const bool known = std::any_of(names.begin(), names.end(), [&](const std::string& t) { return key.str() == t; });
     if (!known) {
       throw ConfigError(sourceLine(source, node) + ": unknown table or key '" + std::string(key.str()) +
                         "' (expected " + expected + ")");

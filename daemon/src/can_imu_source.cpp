@@ -1,8 +1,8 @@
 #include "headingd/daemon/can_imu_source.hpp"
 
-#include <boost/asio/post.hpp>
-#include <future>
+#include <spdlog/spdlog.h>
 
+#include "headingd/can/can_config_toml.hpp"
 #include "headingd/daemon/can_assembler_report.hpp"
 #include "headingd/daemon/can_epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
@@ -14,18 +14,30 @@ namespace {
 constexpr auto kTimerPeriod = std::chrono::milliseconds(10);
 }  // namespace
 
+std::unique_ptr<SourceConfig> parseCanSource(const SourceTable& table) {
+  auto config = std::make_unique<CanSourceConfig>();
+  config->can = can::parseCanTable(table.table, table.source, table.base_dir);
+  config->enabled = true;
+  return config;
+}
+
+std::unique_ptr<Source> createCanSource(const SourceConfig& config, SourceContext& context) {
+  const can::CanConfig& can = static_cast<const CanSourceConfig&>(config).can;
+  auto source = std::make_unique<CanImuSource>(config.table, can, context.source_index, context.addImuRing(config.table));
+  spdlog::info("source can: interface {}, DBC {}", can.interface, can.dbc_path);
+  return source;
+}
+
 CanImuSource::CanImuSource(std::string name, const can::CanConfig& config, std::uint16_t source_index,
                            SampleRing<ImuRingEntry>* imu_ring)
-    : name_(std::move(name)),
-      source_index_(source_index),
+    : AsioSource(std::move(name), source_index, Lifetime::kUntilStopped, kTimerPeriod),
       ring_(imu_ring),
       config_(config),
-      dbc_(can::loadDbcFile(config.dbc_path)),
-      timer_(io_) {
+      dbc_(can::loadDbcFile(config.dbc_path)) {
   codec_ = std::make_unique<can::ImuFrameCodec>(config_, dbc_);
   assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(config_));
   flush_age_ns_ = epochFlushAgeNs(config_, *codec_);
-  receiver_ = std::make_unique<can::SocketCanReceiver>(io_, can::receiverSettingsFrom(config_, *codec_),
+  receiver_ = std::make_unique<can::SocketCanReceiver>(io(), can::receiverSettingsFrom(config_, *codec_),
                                                       [this](const can::CanFrame& f) { onFrame(f); });
 }
 
@@ -46,47 +58,13 @@ void CanImuSource::pushSamples(const can::AssembledSamples& samples) {
       e.sample.t_ns = monotonicNs();  // no kernel timestamp: the best we know
     }
     e.arrival_mono_ns = e.sample.t_ns;
-    e.source_index = source_index_;
-    (ring_->push(e) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);
+    push(*ring_, e);
   }
 }
 
 void CanImuSource::onFrame(const can::CanFrame& frame) { pushSamples(assembler_->push(frame)); }
 
-void CanImuSource::onTimer() {
-  pushSamples(flushEpoch(*assembler_, config_, flush_age_ns_, realtimeNs()));
-  {
-    std::lock_guard lock(snapshot_mutex_);
-    snapshot_ = assembler_->counters();
-  }
-  timer_.expires_after(kTimerPeriod);
-  timer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec) onTimer();
-  });
-}
-
-void CanImuSource::start() {
-  work_.emplace(io_.get_executor());
-  boost::asio::post(io_, [this] {
-    receiver_->start();
-    onTimer();
-  });
-  thread_ = std::thread([this] { io_.run(); });
-}
-
-void CanImuSource::stop() {
-  if (!thread_.joinable()) return;
-  std::promise<void> stopped;
-  boost::asio::post(io_, [this, &stopped] {
-    receiver_->stop();
-    timer_.cancel();
-    stopped.set_value();
-  });
-  stopped.get_future().wait_for(std::chrono::milliseconds(500));
-  work_.reset();
-  io_.stop();
-  thread_.join();
-}
+void CanImuSource::onTick() { pushSamples(flushEpoch(*assembler_, config_, flush_age_ns_, realtimeNs())); }
 
 void CanImuSource::report(SourceReport& out) const {
   const can::ReceiverStatus r = receiver_->status();
@@ -97,8 +75,8 @@ void CanImuSource::report(SourceReport& out) const {
   }
   if (out.last_error != r.last_error) out.last_error = r.last_error;
   std::size_t i = 0;
-  out.set(i++, "samples_pushed", pushed_.load(std::memory_order_relaxed));
-  out.set(i++, "ring_full_drops", dropped_.load(std::memory_order_relaxed));
+  out.set(i++, "samples_pushed", pushed());
+  out.set(i++, "ring_full_drops", ringFullDrops());
   out.set(i++, "frames", r.frames);
   out.set(i++, "kernel_drops", r.kernel_drops);
   out.set(i++, "read_errors", r.read_errors);
@@ -110,8 +88,7 @@ void CanImuSource::report(SourceReport& out) const {
   out.set(i++, "error_passive", r.bus.error_passive);
   out.set(i++, "controller_rx_overflow", r.bus.controller_rx_overflow);
   out.set(i++, "protocol_violations", r.bus.protocol_violations);
-  std::lock_guard lock(snapshot_mutex_);
-  reportAssemblerCounters(out, &i, snapshot_);
+  withSnapshot([&](const can::AssemblerCounters& assembler) { reportAssemblerCounters(out, &i, assembler); });
 }
 
 }  // namespace headingd::daemon

@@ -4,24 +4,52 @@
 #include <spdlog/spdlog.h>
 #include <sstream>
 
+#include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/can_assembler_report.hpp"
 #include "headingd/daemon/can_epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
+#include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::daemon {
 
-CandumpLogSource::CandumpLogSource(std::string name, const CandumpLogSourceConfig& config,
-                                   const can::CanConfig& can_config, AtEnd at_end, const PlaybackClock* clock,
-                                   std::uint16_t source_index, SampleRing<ImuRingEntry>* imu_ring)
-    : name_(std::move(name)),
+std::unique_ptr<SourceConfig> parseCandumpLogSource(const SourceTable& table) {
+  auto c = std::make_unique<CandumpLogSourceConfig>();
+  core::TomlTableReader candump(&table.table, table.source, "candump_log");
+  c->enabled = candump.boolean("enabled", false);
+  c->path = readablePath(candump, "path", "", table.base_dir, c->enabled);
+  c->can_config_path = readablePath(candump, "can_config", "", table.base_dir, c->enabled);
+  if (c->enabled) {
+    if (c->path.empty()) candump.fail("path", "expected the candump -l log to play (the source is enabled)");
+    if (c->can_config_path.empty()) {
+      candump.fail("can_config", "expected a file with the [can] table that decodes the log (e.g. can-headingd.toml)");
+    }
+    c->can = can::loadCanConfigFile(c->can_config_path);
+  }
+  candump.rejectUnknownKeys();
+  return c;
+}
+
+std::unique_ptr<Source> createCandumpLogSource(const SourceConfig& config, SourceContext& context) {
+  const auto& c = static_cast<const CandumpLogSourceConfig&>(config);
+  auto source = std::make_unique<CandumpLogSource>(c.table, c, context.playback.at_end, context.playback_clock,
+                                                   context.source_index, context.addImuRing(c.table));
+  spdlog::info("source candump_log: {} ({} frames), decoded by {} (DBC {})", c.path, source->frameCount(),
+               c.can_config_path, c.can.dbc_path);
+  context.logStartsAt(source->firstLogNs());
+  return source;
+}
+
+CandumpLogSource::CandumpLogSource(std::string name, const CandumpLogSourceConfig& config, AtEnd at_end,
+                                   const PlaybackClock* clock, std::uint16_t source_index,
+                                   SampleRing<ImuRingEntry>* imu_ring)
+    : AsioSource(std::move(name), source_index, Lifetime::kUntilPlayed, std::chrono::milliseconds(0)),
       at_end_(at_end),
       clock_(clock),
-      source_index_(source_index),
       ring_(imu_ring),
-      can_config_(can_config),
-      dbc_(can::loadDbcFile(can_config.dbc_path)),
-      timer_(io_) {
+      can_config_(config.can),
+      dbc_(can::loadDbcFile(config.can.dbc_path)),
+      timer_(io()) {
   codec_ = std::make_unique<can::ImuFrameCodec>(can_config_, dbc_);
   assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(can_config_));
   flush_age_ns_ = epochFlushAgeNs(can_config_, *codec_);
@@ -51,17 +79,13 @@ void CandumpLogSource::pushSamples(const can::AssembledSamples& samples) {
     ImuRingEntry e;
     e.sample = samples.samples[static_cast<std::size_t>(i)];
     e.arrival_mono_ns = clock_->dueMonoNs(e.sample.t_ns);
-    e.source_index = source_index_;
-    (ring_->push(e) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);
+    push(*ring_, e);
   }
 }
 
 void CandumpLogSource::finish() {
   pushSamples(assembler_->finish());
-  {
-    std::lock_guard lock(snapshot_mutex_);
-    snapshot_ = assembler_->counters();
-  }
+  takeSnapshot();
   finished_.store(true);
 }
 
@@ -78,10 +102,7 @@ void CandumpLogSource::playDue() {
     finish();
     return;
   }
-  {
-    std::lock_guard lock(snapshot_mutex_);
-    snapshot_ = assembler_->counters();
-  }
+  takeSnapshot();
   // steady_clock is CLOCK_MONOTONIC on Linux: absolute deadlines, no drift.
   timer_.expires_at(std::chrono::steady_clock::time_point(
       std::chrono::nanoseconds(clock_->dueMonoNs(frames_[next_frame_].kernel_time_ns))));
@@ -90,20 +111,11 @@ void CandumpLogSource::playDue() {
   });
 }
 
-void CandumpLogSource::start() {
-  if (thread_.joinable()) return;
-  // The io_context runs out of work (and the thread ends) when the log is played.
+void CandumpLogSource::onStart() {
   timer_.expires_at(std::chrono::steady_clock::time_point(std::chrono::nanoseconds(clock_->start_mono_ns)));
   timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) playDue();
   });
-  thread_ = std::thread([this] { io_.run(); });
-}
-
-void CandumpLogSource::stop() {
-  if (!thread_.joinable()) return;
-  io_.stop();
-  thread_.join();
 }
 
 void CandumpLogSource::report(SourceReport& out) const {
@@ -114,10 +126,9 @@ void CandumpLogSource::report(SourceReport& out) const {
   out.set(i++, "frames_in_log", frames_.size());
   out.set(i++, "frames_played", frames_played_.load(std::memory_order_relaxed));
   out.set(i++, "log_bad_lines", reader_counters_.bad_lines);
-  out.set(i++, "samples_pushed", pushed_.load(std::memory_order_relaxed));
-  out.set(i++, "ring_full_drops", dropped_.load(std::memory_order_relaxed));
-  std::lock_guard lock(snapshot_mutex_);
-  reportAssemblerCounters(out, &i, snapshot_);
+  out.set(i++, "samples_pushed", pushed());
+  out.set(i++, "ring_full_drops", ringFullDrops());
+  withSnapshot([&](const can::AssemblerCounters& assembler) { reportAssemblerCounters(out, &i, assembler); });
 }
 
 }  // namespace headingd::daemon

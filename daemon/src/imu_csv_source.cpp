@@ -3,12 +3,47 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <spdlog/spdlog.h>
 
+#include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/clocks.hpp"
+#include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/nmea_epochs.hpp"
 
 namespace headingd::daemon {
+
+std::unique_ptr<SourceConfig> parseImuCsvSource(const SourceTable& table) {
+  auto c = std::make_unique<ImuCsvSourceConfig>();
+  core::TomlTableReader csv(&table.table, table.source, "imu_csv");
+  c->enabled = csv.boolean("enabled", c->enabled);
+  c->imu_csv_path = readablePath(csv, "path", "", table.base_dir, c->enabled);
+  if (c->enabled && c->imu_csv_path.empty()) csv.fail("path", "expected the IMU CSV file to play (the source is enabled)");
+  c->nmea_path = readablePath(csv, "nmea", "", table.base_dir, c->enabled);
+  c->nmea_first_epoch_t_s = csv.number("nmea_first_epoch_t_s", 0.0, -1e9, 1e9, "s");
+  c->speed = csv.number("speed", c->speed, 0.01, 1000.0, "x real time");
+  c->start_delay_s = csv.number("start_delay_s", c->start_delay_s, 0.0, 3600.0, "s");
+  const std::string at_end = csv.choice("at_end", "stay", {"stay", "exit", "loop"});
+  c->at_end = at_end == "exit" ? AtEnd::kExit : at_end == "loop" ? AtEnd::kLoop : AtEnd::kStay;
+  c->monotonic_time = csv.choice("time_axis", "file", {"file", "monotonic"}) == "monotonic";
+  if (c->monotonic_time && c->speed != 1.0) {
+    csv.fail("time_axis", "\"monotonic\" needs speed = 1.0 (at another speed the file's time steps would not be the clock's)");
+  }
+  csv.rejectUnknownKeys();
+  return c;
+}
+
+std::unique_ptr<Source> createImuCsvSource(const SourceConfig& config, SourceContext& context) {
+  const auto& c = static_cast<const ImuCsvSourceConfig&>(config);
+  SampleRing<ImuRingEntry>* imu_ring = context.addImuRing(c.table);
+  SampleRing<GpsRingEntry>* gps_ring = c.nmea_path.empty() ? nullptr : context.addGpsRing(c.table);
+  auto source = std::make_unique<ImuCsvSource>(c.table, c, context.source_index, imu_ring, gps_ring);
+  spdlog::info("source imu_csv: {} ({} samples{}), speed {}x, at end: {}", c.imu_csv_path, source->imuSampleCount(),
+               c.nmea_path.empty() ? std::string()
+                                   : ", GPS " + c.nmea_path + " (" + std::to_string(source->gpsEpochCount()) + " epochs)",
+               c.speed, atEndName(c.at_end));
+  return source;
+}
 
 ImuCsvSource::ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, std::uint16_t source_index,
                            SampleRing<ImuRingEntry>* imu_ring, SampleRing<GpsRingEntry>* gps_ring)

@@ -2,8 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <spdlog/spdlog.h>
 #include <vector>
 
+#include "headingd/core/toml_table_reader.hpp"
+#include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/nmea_epochs.hpp"
 #include "headingd/nmea/gps_observation_from_fix.hpp"
 
@@ -19,17 +22,35 @@ std::chrono::steady_clock::time_point steadyAt(std::int64_t mono_ns) {
 
 }  // namespace
 
+std::unique_ptr<SourceConfig> parseNmeaLogSource(const SourceTable& table) {
+  auto c = std::make_unique<NmeaLogSourceConfig>();
+  core::TomlTableReader nmea_log(&table.table, table.source, "nmea_log");
+  c->enabled = nmea_log.boolean("enabled", false);
+  c->path = readablePath(nmea_log, "path", "", table.base_dir, c->enabled);
+  if (c->enabled && c->path.empty()) nmea_log.fail("path", "expected the NMEA log to play (the source is enabled)");
+  c->time_offset_s = nmea_log.number("time_offset_s", 0.0, -1e9, 1e9, "s");
+  nmea_log.rejectUnknownKeys();
+  return c;
+}
+
+std::unique_ptr<Source> createNmeaLogSource(const SourceConfig& config, SourceContext& context) {
+  const auto& c = static_cast<const NmeaLogSourceConfig&>(config);
+  auto source = std::make_unique<NmeaLogSource>(c.table, c, context.playback, context.playback_clock,
+                                                context.source_index, context.addGpsRing(c.table));
+  spdlog::info("source nmea_log: {} ({} epochs)", c.path, source->epochCount());
+  context.logStartsAt(source->firstLogNs());
+  return source;
+}
+
 NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config, const PlaybackConfig& playback,
                              const PlaybackClock* clock, std::uint16_t source_index,
                              SampleRing<GpsRingEntry>* gps_ring)
-    : name_(std::move(name)),
+    : AsioSource(std::move(name), source_index, Lifetime::kUntilPlayed, kSnapshotPeriod),
       at_end_(playback.at_end),
       clock_(clock),
-      source_index_(source_index),
       ring_(gps_ring),
       offset_ns_(std::llround(config.time_offset_s * 1e9)),
-      start_timer_(io_),
-      snapshot_timer_(io_) {
+      start_timer_(io()) {
   nmea::NmeaLogPlayerConfig player;
   player.path = config.path;
   player.speed = playback.speed;
@@ -37,7 +58,7 @@ NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config
   // player ahead of the candump log it was recorded beside.
   player.max_gap_s = 86400.0;
   player_ = std::make_unique<nmea::NmeaLogPlayer>(
-      io_, player, [this](const nmea::Fix& fix, std::int64_t receive_ns) { onFix(fix, receive_ns); },
+      io(), player, [this](const nmea::Fix& fix, std::int64_t receive_ns) { onFix(fix, receive_ns); },
       nmea::LineHandler{}, [this] { onFinished(); });
 
   // The first epoch's time and the first date, from the parser's view of the whole log.
@@ -71,32 +92,16 @@ void NmeaLogSource::onFix(const nmea::Fix& fix, std::int64_t receive_ns) {
   GpsRingEntry e;
   e.observation = nmea::gpsObservationFromFix(fix, *t);
   e.arrival_mono_ns = receive_ns;
-  e.source_index = source_index_;
-  (ring_->push(e) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);
+  push(*ring_, e);
 }
 
 void NmeaLogSource::onFinished() {
-  snapshot_timer_.cancel();
-  {
-    std::lock_guard lock(snapshot_mutex_);
-    snapshot_ = player_->counters();
-  }
+  stopTicks();
+  takeSnapshot();
   finished_.store(true);
 }
 
-void NmeaLogSource::snapshotCounters() {
-  {
-    std::lock_guard lock(snapshot_mutex_);
-    snapshot_ = player_->counters();
-  }
-  snapshot_timer_.expires_after(kSnapshotPeriod);
-  snapshot_timer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec && !finished_.load()) snapshotCounters();
-  });
-}
-
-void NmeaLogSource::start() {
-  if (thread_.joinable()) return;
+void NmeaLogSource::onStart() {
   log_time_.emplace(offset_ns_, first_day_ns_);
   // The player feeds its first group at once: start it when the log clock reaches it.
   const std::int64_t due = first_log_ns_ ? clock_->dueMonoNs(*first_log_ns_) : clock_->start_mono_ns;
@@ -104,31 +109,23 @@ void NmeaLogSource::start() {
   start_timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) player_->start();
   });
-  snapshotCounters();
-  thread_ = std::thread([this] { io_.run(); });
-}
-
-void NmeaLogSource::stop() {
-  if (!thread_.joinable()) return;
-  io_.stop();
-  thread_.join();
 }
 
 void NmeaLogSource::report(SourceReport& out) const {
   out.state = finished_.load() ? SourceState::kFinished : SourceState::kRunning;
   out.last_error.clear();
-  std::lock_guard lock(snapshot_mutex_);
-  const nmea::NmeaLogPlayerCounters& c = snapshot_;
-  std::size_t i = 0;
-  out.set(i++, "epochs_in_log", epochs_in_log_);
-  out.set(i++, "epochs", c.epochs.epochs);
-  out.set(i++, "epochs_pushed", pushed_.load(std::memory_order_relaxed));
-  out.set(i++, "ring_full_drops", dropped_.load(std::memory_order_relaxed));
-  out.set(i++, "epochs_without_time", untimed_.load(std::memory_order_relaxed));
-  out.set(i++, "late_sentences", c.epochs.late_sentences);
-  out.set(i++, "groups_played", c.groups_played);
-  out.set(i++, "backward_steps", c.backward_steps);
-  nmea::forEachCounter(c.parser, [&](const char* name, std::uint64_t v) { out.set(i++, "nmea_", name, v); });
+  withSnapshot([&](const nmea::NmeaLogPlayerCounters& c) {
+    std::size_t i = 0;
+    out.set(i++, "epochs_in_log", epochs_in_log_);
+    out.set(i++, "epochs", c.epochs.epochs);
+    out.set(i++, "epochs_pushed", pushed());
+    out.set(i++, "ring_full_drops", ringFullDrops());
+    out.set(i++, "epochs_without_time", untimed_.load(std::memory_order_relaxed));
+    out.set(i++, "late_sentences", c.epochs.late_sentences);
+    out.set(i++, "groups_played", c.groups_played);
+    out.set(i++, "backward_steps", c.backward_steps);
+    nmea::forEachCounter(c.parser, [&](const char* name, std::uint64_t v) { out.set(i++, "nmea_", name, v); });
+  });
 }
 
 }  // namespace headingd::daemon

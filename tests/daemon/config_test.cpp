@@ -2,12 +2,23 @@
 #include <gtest/gtest.h>
 
 #include "daemon_test_support.hpp"
+#include "headingd/daemon/candump_log_source.hpp"
 #include "headingd/daemon/config.hpp"
+#include "headingd/daemon/imu_csv_source.hpp"
+#include "headingd/daemon/nmea_log_source.hpp"
 
 namespace headingd::daemon {
 namespace {
 
 using test::TempDir;
+
+// The settings of a source table of kind T: as parsed when the file has the table, else the
+// compiled-in defaults (what an absent table means).
+template <class T>
+T tableOr(const DaemonConfig& c) {
+  const T* found = c.sources.find<T>();
+  return found != nullptr ? *found : T{};
+}
 
 // The message of the ConfigError that loading `text` throws ("" if none).
 std::string errorOf(const TempDir& dir, const std::string& text) {
@@ -110,23 +121,19 @@ TEST_F(DaemonConfigErrors, MonotonicTimeNeedsRealTimeSpeed) {
 TEST_F(DaemonConfigErrors, FileTimeCannotMixWithLiveSources) {
   dir.write("imu.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.81\n");
   const std::string e = errorOf(dir, "[imu_csv]\nenabled = true\npath = \"imu.csv\"\n[gps]\ndevice = \"/dev/null\"\n");
-#ifdef HEADINGD_WITH_GPS_SERIAL
   EXPECT_NE(e.find(at(2) + "[imu_csv] enabled: a file source on its own time axis cannot run together"),
             std::string::npos) << e;
   EXPECT_EQ(errorOf(dir, "[imu_csv]\nenabled = true\npath = \"imu.csv\"\ntime_axis = \"monotonic\"\n"
                          "[gps]\ndevice = \"/dev/null\"\n"),
             "");
-#else
-  EXPECT_NE(e.find("[gps]: this headingd was built without"), std::string::npos) << e;
-#endif
 }
 
 TEST(DaemonConfig, RelativePathsAreTakenFromTheConfigFolder) {
   TempDir dir;
   dir.write("imu.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.81\n");
   const DaemonConfig c = loadDaemonConfig(dir.write("ok.toml", "[imu_csv]\nenabled = true\npath = \"imu.csv\"\n"));
-  EXPECT_EQ(c.imu_csv.imu_csv_path, dir.path() + "/imu.csv");
-  EXPECT_TRUE(c.imu_csv.enabled);
+  EXPECT_EQ(tableOr<ImuCsvSourceConfig>(c).imu_csv_path, dir.path() + "/imu.csv");
+  EXPECT_TRUE(tableOr<ImuCsvSourceConfig>(c).enabled);
 }
 
 TEST(DaemonConfig, EmptyFileGivesTheDocumentedDefaults) {
@@ -135,7 +142,7 @@ TEST(DaemonConfig, EmptyFileGivesTheDocumentedDefaults) {
   EXPECT_EQ(c.rate_hz, 100.0);
   EXPECT_EQ(c.lcm.url, "udpm://239.255.76.67:7667?ttl=0");
   EXPECT_EQ(c.status_period_s, 1.0);
-  EXPECT_FALSE(c.imu_csv.enabled);
+  EXPECT_FALSE(tableOr<ImuCsvSourceConfig>(c).enabled);
 }
 
 // config/headingd.toml documents every key with its default: loading it must give exactly
@@ -143,6 +150,7 @@ TEST(DaemonConfig, EmptyFileGivesTheDocumentedDefaults) {
 TEST(DaemonConfig, ShippedDefaultsFileMatchesTheCompiledDefaults) {
   const DaemonConfig shipped = loadDaemonConfig(HEADINGD_CONFIG_DIR "/headingd.toml");
   const DaemonConfig d;
+  const ImuCsvSourceConfig shipped_csv = tableOr<ImuCsvSourceConfig>(shipped), d_csv;
   EXPECT_EQ(shipped.rate_hz, d.rate_hz);
   EXPECT_EQ(shipped.imu_timeout_s, d.imu_timeout_s);
   EXPECT_EQ(shipped.status_period_s, d.status_period_s);
@@ -164,12 +172,12 @@ TEST(DaemonConfig, ShippedDefaultsFileMatchesTheCompiledDefaults) {
   EXPECT_EQ(shipped.log.file, d.log.file);
   EXPECT_EQ(shipped.log.repeat_burst, d.log.repeat_burst);
   EXPECT_EQ(shipped.log.repeat_interval_s, d.log.repeat_interval_s);
-  EXPECT_EQ(shipped.imu_csv.enabled, d.imu_csv.enabled);
-  EXPECT_EQ(shipped.imu_csv.speed, d.imu_csv.speed);
-  EXPECT_EQ(shipped.imu_csv.at_end, d.imu_csv.at_end);
-  EXPECT_EQ(shipped.imu_csv.monotonic_time, d.imu_csv.monotonic_time);
-  EXPECT_EQ(shipped.imu_csv.start_delay_s, d.imu_csv.start_delay_s);
-  EXPECT_EQ(shipped.imu_csv.nmea_first_epoch_t_s, d.imu_csv.nmea_first_epoch_t_s);
+  EXPECT_EQ(shipped_csv.enabled, d_csv.enabled);
+  EXPECT_EQ(shipped_csv.speed, d_csv.speed);
+  EXPECT_EQ(shipped_csv.at_end, d_csv.at_end);
+  EXPECT_EQ(shipped_csv.monotonic_time, d_csv.monotonic_time);
+  EXPECT_EQ(shipped_csv.start_delay_s, d_csv.start_delay_s);
+  EXPECT_EQ(shipped_csv.nmea_first_epoch_t_s, d_csv.nmea_first_epoch_t_s);
   EXPECT_FALSE(shipped.wmm_path.empty());  // the shipped file names the bundled model
 }
 
@@ -187,7 +195,6 @@ TEST_F(DaemonConfigErrors, LogSourcesNameTheirKeys) {
             std::string::npos);
   EXPECT_NE(errorOf(dir, "[nmea_log]\ntime_offset = 1\n").find(at(2) + "[nmea_log] time_offset: unknown key"),
             std::string::npos);
-#ifdef HEADINGD_WITH_GPS_SERIAL
   dir.write("gps.nmea", "$GPGGA,120000.00,,,,,0,00,99.99,,M,,M,,*65\n");
   const std::string mixed =
       errorOf(dir, "[nmea_log]\nenabled = true\npath = \"gps.nmea\"\n[gps]\ndevice = \"/dev/null\"\n");
@@ -195,29 +202,32 @@ TEST_F(DaemonConfigErrors, LogSourcesNameTheirKeys) {
                                "clock and cannot run together"),
             std::string::npos)
       << mixed;
-#endif
 }
 
 TEST(DaemonConfig, ShippedDefaultsFileHasTheLogSourceDefaults) {
   const DaemonConfig shipped = loadDaemonConfig(HEADINGD_CONFIG_DIR "/headingd.toml");
   const DaemonConfig d;
-  EXPECT_EQ(shipped.playback.speed, d.playback.speed);
-  EXPECT_EQ(shipped.playback.start_delay_s, d.playback.start_delay_s);
-  EXPECT_EQ(shipped.playback.at_end, d.playback.at_end);
-  EXPECT_EQ(shipped.candump_log.enabled, d.candump_log.enabled);
-  EXPECT_EQ(shipped.candump_log.path, d.candump_log.path);
-  EXPECT_EQ(shipped.candump_log.can_config_path, d.candump_log.can_config_path);
-  EXPECT_EQ(shipped.nmea_log.enabled, d.nmea_log.enabled);
-  EXPECT_EQ(shipped.nmea_log.path, d.nmea_log.path);
-  EXPECT_EQ(shipped.nmea_log.time_offset_s, d.nmea_log.time_offset_s);
+  const CandumpLogSourceConfig shipped_candump = tableOr<CandumpLogSourceConfig>(shipped), d_candump;
+  const NmeaLogSourceConfig shipped_nmea = tableOr<NmeaLogSourceConfig>(shipped), d_nmea;
+  EXPECT_EQ(shipped.sources.playback.speed, d.sources.playback.speed);
+  EXPECT_EQ(shipped.sources.playback.start_delay_s, d.sources.playback.start_delay_s);
+  EXPECT_EQ(shipped.sources.playback.at_end, d.sources.playback.at_end);
+  EXPECT_EQ(shipped_candump.enabled, d_candump.enabled);
+  EXPECT_EQ(shipped_candump.path, d_candump.path);
+  EXPECT_EQ(shipped_candump.can_config_path, d_candump.can_config_path);
+  EXPECT_EQ(shipped_nmea.enabled, d_nmea.enabled);
+  EXPECT_EQ(shipped_nmea.path, d_nmea.path);
+  EXPECT_EQ(shipped_nmea.time_offset_s, d_nmea.time_offset_s);
 }
 
 TEST(DaemonConfig, DemoConfigLoads) {
   const DaemonConfig demo = loadDaemonConfig(HEADINGD_CONFIG_DIR "/demo.toml");
-  EXPECT_TRUE(demo.candump_log.enabled);
-  EXPECT_TRUE(demo.nmea_log.enabled);
-  EXPECT_EQ(demo.candump_log.path, HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz");
-  EXPECT_EQ(demo.playback.at_end, AtEnd::kExit);
+  const CandumpLogSourceConfig demo_candump = tableOr<CandumpLogSourceConfig>(demo);
+  const NmeaLogSourceConfig demo_nmea = tableOr<NmeaLogSourceConfig>(demo);
+  EXPECT_TRUE(demo_candump.enabled);
+  EXPECT_TRUE(demo_nmea.enabled);
+  EXPECT_EQ(demo_candump.path, HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz");
+  EXPECT_EQ(demo.sources.playback.at_end, AtEnd::kExit);
   EXPECT_TRUE(demo.console_status);
   EXPECT_NE(demo.lcm.url.find("ttl=0"), std::string::npos);
 }

@@ -73,5 +73,6 @@ const toml::table* tableOf(const toml::table& doc, std::string_view name, const 
 
 // Throws for a top-level key of `doc` that is not one of `names` or is not a table.
 void rejectUnknownTables(const toml::table& doc, const std::string& source, std::initializer_list<const char*> names);
+void rejectUnknownTables(const toml::table& doc, const std::string& source, const std::vector<std::string>& names);
 
 }  // namespace headingd::core

@@ -11,13 +11,10 @@
 // (before each frame, at that frame's time; can_epoch_flush.hpp), so the samples do not
 // depend on how late the timer fired.
 #include <atomic>
-#include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <optional>
-#include <thread>
 #include <vector>
 
 #include "headingd/can/can_config.hpp"
@@ -26,27 +23,31 @@
 #include "headingd/can/dbc.hpp"
 #include "headingd/can/epoch_assembler.hpp"
 #include "headingd/can/imu_frame_codec.hpp"
-#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/asio_source.hpp"
 #include "headingd/daemon/playback_clock.hpp"
 #include "headingd/daemon/ring_entries.hpp"
-#include "headingd/daemon/sample_ring.hpp"
-#include "headingd/daemon/source.hpp"
+#include "headingd/daemon/source_registry.hpp"
 
 namespace headingd::daemon {
 
-class CandumpLogSource final : public Source {
+// [candump_log]: a `candump -l` log (plain or gzip) decoded like the live [can] source.
+struct CandumpLogSourceConfig : SourceConfig {
+  std::string path;             // the log
+  std::string can_config_path;  // a TOML file with a [can] table (DBC, signal mapping, counters, epoch window)
+  can::CanConfig can;           // read from can_config_path when enabled
+};
+std::unique_ptr<SourceConfig> parseCandumpLogSource(const SourceTable& table);
+std::unique_ptr<Source> createCandumpLogSource(const SourceConfig& config, SourceContext& context);
+
+class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
  public:
   // Reads the DBC file and the whole log (throws core::ConfigError for the DBC and mapping,
   // files::CsvError when the log cannot be read). Lines that are not frames are counted.
-  CandumpLogSource(std::string name, const CandumpLogSourceConfig& config, const can::CanConfig& can_config,
-                   AtEnd at_end, const PlaybackClock* clock, std::uint16_t source_index,
-                   SampleRing<ImuRingEntry>* imu_ring);
+  CandumpLogSource(std::string name, const CandumpLogSourceConfig& config, AtEnd at_end, const PlaybackClock* clock,
+                   std::uint16_t source_index, SampleRing<ImuRingEntry>* imu_ring);
   ~CandumpLogSource() override;
 
-  const std::string& name() const override { return name_; }
   const char* kind() const override { return "candump_log"; }
-  void start() override;
-  void stop() override;
   void report(SourceReport& out) const override;
   bool wantsExit() const override { return finished_.load() && at_end_ == AtEnd::kExit; }
   bool playing() const override { return !finished_.load(); }
@@ -57,14 +58,14 @@ class CandumpLogSource final : public Source {
   const can::CandumpCounters& readerCounters() const { return reader_counters_; }
 
  private:
+  void onStart() override;  // the timer for the first frame; the thread ends when the log is played
+  can::AssemblerCounters currentCounters() const override { return assembler_->counters(); }
   void playDue();  // on the io thread: every frame due by now, then the timer for the next
   void pushSamples(const can::AssembledSamples& samples);
   void finish();
 
-  std::string name_;
   AtEnd at_end_;
   const PlaybackClock* clock_;
-  std::uint16_t source_index_;
   SampleRing<ImuRingEntry>* ring_;
   can::CanConfig can_config_;
   can::DbcDatabase dbc_;
@@ -75,13 +76,9 @@ class CandumpLogSource final : public Source {
   can::CandumpCounters reader_counters_;
   std::size_t next_frame_ = 0;
 
-  boost::asio::io_context io_;
   boost::asio::steady_timer timer_;
-  std::thread thread_;
   std::atomic<bool> finished_{false};
-  std::atomic<std::uint64_t> frames_played_{0}, pushed_{0}, dropped_{0};
-  mutable std::mutex snapshot_mutex_;
-  can::AssemblerCounters snapshot_;
+  std::atomic<std::uint64_t> frames_played_{0};
 };
 
 }  // namespace headingd::daemon

@@ -39,8 +39,6 @@ class Daemon {
   LoopSummary summary() const;
 
  private:
-  void addLogSources();  // [candump_log], [nmea_log]
-
   DaemonConfig config_;
   std::unique_ptr<core::WorldMagneticModel> wmm_;
   std::vector<std::unique_ptr<SampleRing<ImuRingEntry>>> imu_rings_;

@@ -8,18 +8,37 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include "headingd/daemon/config.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
+#include "headingd/daemon/source_registry.hpp"
 #include "headingd/nmea/counters.hpp"
 
 namespace headingd::daemon {
+
+// [imu_csv]
+struct ImuCsvSourceConfig : SourceConfig {
+  std::string imu_csv_path;  // BROAD format, plain or gzip (drivers/files imu_csv.hpp)
+  std::string nmea_path;     // optional GPS capture on the IMU time axis ("" = none)
+  double nmea_first_epoch_t_s = 0.0;
+  double speed = 1.0;        // play speed, 1 = real time
+  double start_delay_s = 0.0;
+  AtEnd at_end = AtEnd::kStay;
+  // false: samples keep the file's own time column (what headingd-replay sees, any speed).
+  // true: the file's times moved by one constant onto CLOCK_MONOTONIC (speed 1 only), the
+  // axis of the live sources, so a recording can run beside a live GPS ([gps]).
+  bool monotonic_time = false;
+
+  bool onMonotonicClock() const override { return monotonic_time; }
+};
+std::unique_ptr<SourceConfig> parseImuCsvSource(const SourceTable& table);
+std::unique_ptr<Source> createImuCsvSource(const SourceConfig& config, SourceContext& context);
 
 class ImuCsvSource final : public Source {
  public:

@@ -9,35 +9,38 @@
 // the candump log's timestamps, so the estimator places it among the IMU samples as it was
 // recorded; arrival time: when the player fed it.
 #include <atomic>
-#include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <optional>
-#include <thread>
 
-#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/asio_source.hpp"
 #include "headingd/daemon/nmea_log_time.hpp"
 #include "headingd/daemon/playback_clock.hpp"
 #include "headingd/daemon/ring_entries.hpp"
-#include "headingd/daemon/sample_ring.hpp"
-#include "headingd/daemon/source.hpp"
+#include "headingd/daemon/source_registry.hpp"
 #include "headingd/nmea/nmea_log_player.hpp"
 
 namespace headingd::daemon {
 
-class NmeaLogSource final : public Source {
+// [nmea_log]: an NMEA 0183 log (plain text) played by drivers/nmea's NmeaLogPlayer.
+struct NmeaLogSourceConfig : SourceConfig {
+  std::string path;
+  // Added to the sentences' UTC to put the epochs on the candump log's clock (a recorder
+  // whose wall clock was off by this much).
+  double time_offset_s = 0.0;
+};
+std::unique_ptr<SourceConfig> parseNmeaLogSource(const SourceTable& table);
+std::unique_ptr<Source> createNmeaLogSource(const SourceConfig& config, SourceContext& context);
+
+class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
  public:
   // Reads the whole log (throws std::runtime_error naming the file when it cannot).
   NmeaLogSource(std::string name, const NmeaLogSourceConfig& config, const PlaybackConfig& playback,
                 const PlaybackClock* clock, std::uint16_t source_index, SampleRing<GpsRingEntry>* gps_ring);
   ~NmeaLogSource() override;
 
-  const std::string& name() const override { return name_; }
   const char* kind() const override { return "nmea_log"; }
-  void start() override;
-  void stop() override;
   void report(SourceReport& out) const override;
   bool wantsExit() const override { return finished_.load() && at_end_ == AtEnd::kExit; }
   bool playing() const override { return !finished_.load(); }
@@ -47,14 +50,13 @@ class NmeaLogSource final : public Source {
   std::size_t epochCount() const { return epochs_in_log_; }
 
  private:
+  void onStart() override;  // the player starts when the log clock reaches the first epoch
+  nmea::NmeaLogPlayerCounters currentCounters() const override { return player_->counters(); }
   void onFix(const nmea::Fix& fix, std::int64_t receive_ns);
   void onFinished();
-  void snapshotCounters();  // on the io thread (the player's counters live there)
 
-  std::string name_;
   AtEnd at_end_;
   const PlaybackClock* clock_;
-  std::uint16_t source_index_;
   SampleRing<GpsRingEntry>* ring_;
   std::optional<std::int64_t> first_log_ns_;
   std::int64_t first_day_ns_ = 0;
@@ -62,15 +64,10 @@ class NmeaLogSource final : public Source {
   std::size_t epochs_in_log_ = 0;
   std::optional<NmeaLogTime> log_time_;  // made at start()
 
-  boost::asio::io_context io_;
   std::unique_ptr<nmea::NmeaLogPlayer> player_;
   boost::asio::steady_timer start_timer_;
-  boost::asio::steady_timer snapshot_timer_;
-  std::thread thread_;
   std::atomic<bool> finished_{false};
-  std::atomic<std::uint64_t> pushed_{0}, dropped_{0}, untimed_{0};
-  mutable std::mutex snapshot_mutex_;
-  nmea::NmeaLogPlayerCounters snapshot_;
+  std::atomic<std::uint64_t> untimed_{0};
 };
 
 }  // namespace headingd::daemon

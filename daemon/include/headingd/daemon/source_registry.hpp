@@ -1,0 +1,76 @@
+#pragma once
+// The source kinds the daemon knows, one row each in source_registry.cpp: the TOML table a
+// kind is configured by, the function that parses that table, the clock its samples are on,
+// and the factory that makes the source. The daemon's configuration reader hands each source
+// table to its row, and the daemon makes the enabled sources by walking the rows; neither
+// names a kind. daemon/README.md ("Adding a source") shows how a kind is added.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <toml++/toml.h>
+#include <vector>
+
+#include "headingd/daemon/playback_clock.hpp"
+#include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/sample_ring.hpp"
+#include "headingd/daemon/source.hpp"
+#include "headingd/daemon/source_config.hpp"
+
+namespace headingd::daemon {
+
+// A source table present in the configuration file, for its kind's parse function.
+struct SourceTable {
+  const toml::table& table;
+  const std::string& source;    // the configuration file, for messages
+  const std::string& base_dir;  // relative paths are taken from here
+};
+
+// What a factory gets from the daemon: rings of its own (the source is their single
+// producer), its index on STATUS, and the log clock for the log sources.
+struct SourceContext {
+  std::size_t imu_ring_capacity;
+  std::size_t gps_ring_capacity;
+  std::vector<std::unique_ptr<SampleRing<ImuRingEntry>>>& imu_rings;  // owned by the daemon
+  std::vector<std::unique_ptr<SampleRing<GpsRingEntry>>>& gps_rings;
+  const PlaybackConfig& playback;
+  const PlaybackClock* playback_clock;  // filled by the daemon before it starts the sources
+  std::uint16_t source_index = 0;       // of the source being made
+  std::optional<std::int64_t> log_t0_ns;  // earliest first timestamp of the log sources made so far
+
+  // A new ring named "<source_name>.imu" / "<source_name>.gps".
+  SampleRing<ImuRingEntry>* addImuRing(const std::string& source_name);
+  SampleRing<GpsRingEntry>* addGpsRing(const std::string& source_name);
+  // A log source's first timestamp on the log clock (nullopt: it has none).
+  void logStartsAt(std::optional<std::int64_t> log_ns);
+};
+
+struct SourceKind {
+  std::string_view table;  // "can": the table [can], and the source's name
+  TimeAxis time_axis;      // the clock its samples are on (see SourceConfig::onMonotonicClock)
+  // Reads the table (core::TomlTableReader, rejecting unknown keys); throws core::ConfigError.
+  std::unique_ptr<SourceConfig> (*parse)(const SourceTable& table);
+  // Makes the source of an enabled table (reading its files) and logs one line saying what
+  // it plays; throws on any problem. Starts nothing.
+  std::unique_ptr<Source> (*create)(const SourceConfig& config, SourceContext& context);
+};
+
+// The rows, in the order the sources are made.
+const std::vector<SourceKind>& sourceKinds();
+
+// The source tables of `doc` and [playback]: each parsed by its kind, then checked against
+// each other (the time axes must agree). Throws core::ConfigError.
+SourceConfigs parseSourceTables(const toml::table& doc, const std::string& source, const std::string& base_dir);
+
+// The names of the tables parseSourceTables reads ("playback" and every kind's).
+std::vector<std::string> sourceTableNames();
+
+// Makes the enabled sources, in the rows' order.
+std::vector<std::unique_ptr<Source>> makeSources(const SourceConfigs& configs, SourceContext& context);
+
+// Whether an enabled source plays on the log clock.
+bool usesLogClock(const SourceConfigs& configs);
+
+}  // namespace headingd::daemon
