@@ -103,7 +103,10 @@ void ImuCsvSource::run() {
   for (std::int64_t offset = axis_offset;; offset += loop_length_ns_) {
     std::size_t next_imu = 0, next_gps = 0;
     while (next_imu < imu_.size() || next_gps < gps_.size()) {
-      // GPS epochs go after the IMU sample of the same time, as in headingd-replay.
+      // Everything is played at its own due time, in time order (a tie: the IMU sample
+      // first): this is when the data arrives, as from live sensors. The order the estimator
+      // sees is the loop's (core/imu_then_gps_order.hpp: an epoch after the first IMU sample
+      // at or after it, as in headingd-replay), so it is not repeated here.
       const bool imu_next = next_gps >= gps_.size() ||
                             (next_imu < imu_.size() && imu_[next_imu].t_ns <= gps_[next_gps].t_ns);
       const std::int64_t t = imu_next ? imu_[next_imu].t_ns : gps_[next_gps].t_ns;
