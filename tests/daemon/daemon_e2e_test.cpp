@@ -20,6 +20,8 @@ namespace {
 using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::LcmCollector;
+using test::lcmUrl;
+using test::waitUntil;
 using test::TempDir;
 
 // lcm-gen declares its constants without a definition: copies that EXPECT_EQ may bind to.
@@ -31,12 +33,6 @@ constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_ro
 constexpr std::size_t kTrialSamples = 59212;
 constexpr double kTrialSeconds = 207.2385;
 
-// A port of this process's own (the group and ttl=0 stay): tests running at the same time,
-// here or in another build, do not hear each other.
-std::string lcmUrl(int offset) {
-  return "udpm://239.255.76.67:" + std::to_string(20000 + (getpid() % 20000) * 2 + offset) + "?ttl=0";
-}
-
 std::string configText(const std::string& url, const std::string& body) {
   return "[lcm]\nurl = \"" + url + "\"\n" + body;
 }
@@ -47,17 +43,6 @@ template <class R>
 double rateHz(const std::vector<R>& v) {
   if (v.size() < 2) return 0.0;
   return static_cast<double>(v.size() - 1) / (v.back().receive_s - v.front().receive_s);
-}
-
-// Waits until `predicate` holds or `timeout` passes.
-template <class P>
-bool waitUntil(P predicate, std::chrono::milliseconds timeout) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < until) {
-    if (predicate()) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return predicate();
 }
 
 struct ReplayRow {

@@ -24,23 +24,11 @@ namespace {
 using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::LcmCollector;
+using test::lcmUrl;
+using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
 constexpr double kDeg = 180.0 / std::numbers::pi;
-
-std::string lcmUrl(int offset) {
-  return "udpm://239.255.76.67:" + std::to_string(20000 + (getpid() % 20000) * 2 + offset) + "?ttl=0";
-}
-
-template <class P>
-bool waitUntil(P predicate, std::chrono::milliseconds timeout) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < until) {
-    if (predicate()) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return predicate();
-}
 
 const headingd::source_status_t* findSource(const headingd::status_t& s, const std::string& kind) {
   for (const auto& src : s.sources) {

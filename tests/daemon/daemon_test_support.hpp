@@ -96,4 +96,21 @@ class ChildProcess {
   bool exited_ = false;
 };
 
+// An LCM URL on a port of this process's own (the group and ttl=0 stay): tests running at
+// the same time, here or in another build, do not hear each other.
+inline std::string lcmUrl(int offset) {
+  return "udpm://239.255.76.67:" + std::to_string(20000 + (getpid() % 20000) * 2 + offset) + "?ttl=0";
+}
+
+// Waits until `predicate` holds or `timeout` passes.
+template <class P>
+bool waitUntil(P predicate, std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < until) {
+    if (predicate()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return predicate();
+}
+
 }  // namespace headingd::daemon::test
