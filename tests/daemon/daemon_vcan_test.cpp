@@ -134,8 +134,16 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
                "CSV's %.3f s), %zu fresh ATTITUDE, %zu compared with headingd-replay of the received samples, max yaw "
                "difference %.2e deg\n",
                imu.size(), worst_step_fraction, received_seconds, csv_seconds, fresh, compared, max_yaw_diff);
-  EXPECT_GT(fresh, 800u);  // ~10 s at 100 Hz
-  EXPECT_GT(compared, 800u);
+  // Every tick that runs while samples arrive publishes a fresh ATTITUDE: 100 a second of
+  // kernel time, less the ticks the daemon itself counted as missed (under the emulated CPU,
+  // with the host busy, a few hundred in these 10 s; STATUS's total since start is an upper
+  // bound for the window). It must have kept most ticks, and every fresh ATTITUDE must name
+  // a sample it received.
+  const auto misses = static_cast<double>(status.back().message.deadline_misses);
+  std::fprintf(stderr, "vcan: %.0f deadline misses counted by the daemon\n", misses);
+  EXPECT_GE(static_cast<double>(fresh), received_seconds * 100.0 - misses - 20.0);
+  EXPECT_GT(fresh, 500u);
+  EXPECT_GE(compared, fresh * 99 / 100);
   // The timestamps round to µs on the way through LCM: 0.9-2.4e-4° measured over 8 runs. One
   // sample lost or added would turn the attitude by ω·dt, about 0.1° at this trial's rates.
   EXPECT_LT(max_yaw_diff, 5e-3);
