@@ -35,6 +35,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
 
   DaemonConfig c;
   c.source = source;
+  c.text = text;
 
   TomlTableReader daemon(doc["daemon"].as_table(), source, "daemon");
   c.rate_hz = daemon.number("rate_hz", c.rate_hz, 1.0, 2000.0, "Hz");

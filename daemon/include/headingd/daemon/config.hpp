@@ -40,6 +40,7 @@ struct LogConfig {
 
 struct DaemonConfig {
   std::string source;  // the file it came from
+  std::string text;    // its text, as read (the black box keeps a copy)
   // [daemon]
   double rate_hz = 100.0;
   double imu_timeout_s = 0.5;
