@@ -15,18 +15,14 @@
 namespace headingd::daemon {
 namespace {
 
-// A recorder stream as the sources' line sink; lines are refused (and the source carries on)
-// until the recorder has started.
+// A recorder stream as the sources' line sink (it refuses lines until the recorder started).
 class RecorderLineSink final : public recording::LineSink {
  public:
-  RecorderLineSink(RecorderStream& stream, const std::atomic<bool>& recording) : stream_(stream), recording_(recording) {}
-  bool write(std::string_view line) override {
-    return recording_.load(std::memory_order_acquire) && stream_.write(line);
-  }
+  explicit RecorderLineSink(RecorderStream& stream) : stream_(stream) {}
+  bool write(std::string_view line) override { return stream_.write(line); }
 
  private:
   RecorderStream& stream_;
-  const std::atomic<bool>& recording_;
 };
 
 bool hasLiveSource(const SourceConfigs& configs) {
@@ -64,13 +60,16 @@ Daemon::~Daemon() { stop(); }
 
 void Daemon::makeRecorder() {
   const RecorderConfig& rc = config_.recorder;
-  if (!rc.enabled || rc.dir.empty()) return;
   if (!hasLiveSource(config_.sources)) return;  // file sources: their files are the record
+  if (!rc.enabled) {
+    spdlog::info("black box off: {}", rc.off_reason.empty() ? "[recorder] enabled = false" : rc.off_reason);
+    return;
+  }
   recorder_ = std::make_unique<Recorder>(rc, std::vector<std::string>{std::string(recording::kCanStream),
                                                                       std::string(recording::kGpsStream),
                                                                       std::string(recording::kEstimatorStream)});
   for (const std::string_view stream : {recording::kCanStream, recording::kGpsStream, recording::kEstimatorStream}) {
-    recorder_sinks_.push_back(std::make_unique<RecorderLineSink>(recorder_->stream(stream), recording_));
+    recorder_sinks_.push_back(std::make_unique<RecorderLineSink>(recorder_->stream(stream)));
   }
   source_sinks_.can = recorder_sinks_[0].get();
   source_sinks_.gps = recorder_sinks_[1].get();
@@ -83,7 +82,6 @@ void Daemon::startRecorder() {
   if (recorder_ == nullptr) return;
   try {
     recorder_->start(recordingFiles(config_, recording_start_));
-    recording_.store(true, std::memory_order_release);
     spdlog::info("black box: recording the inputs to {}", recorder_->folder());
   } catch (const std::exception& e) {
     spdlog::error("black box: not recording: {}", e.what());

@@ -198,8 +198,9 @@ void EstimatorLoop::releasePlacedEpochs(std::int64_t utime_us) {
   }
 }
 
-void EstimatorLoop::setRecorder(recording::LineSink* sink) {
+void EstimatorLoop::setRecorder(recording::LineSink* sink, const Recorder* recorder) {
   recorder_ = sink != nullptr ? std::make_unique<recording::EstimatorStreamRecorder>(*sink) : nullptr;
+  recorder_status_ = recorder;
 }
 
 void EstimatorLoop::logRingDrops(std::int64_t wake_ns) {
@@ -311,6 +312,7 @@ void EstimatorLoop::publishStatus(std::int64_t now_ns, std::int64_t utime_us) {
   published_at_last_status_ = published_;
   m.publish_errors = static_cast<std::int64_t>(publisher_.errors());
   fillCounters(m, pipeline_.estimator().counters(), loopCounters());
+  if (recorder_status_ != nullptr) appendRecorderCounters(m, recorder_status_->counters());
   if (publisher_.publish(config_.lcm.status_channel, m)) ++published_.status;
 
   // One line for people: systemctl status (STATUS=) and, if asked, stdout.

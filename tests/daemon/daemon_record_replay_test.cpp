@@ -127,14 +127,17 @@ TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
 
   const auto states_heading = test::readEstimates<headingd::heading_t>(dir.file("states.lcm"), "HEADING");
   const auto states_attitude = test::readEstimates<headingd::attitude_t>(dir.file("states.lcm"), "ATTITUDE");
-  // Live: 100 Hz for about kSeconds with an estimate.
-  const std::size_t live_at_least = static_cast<std::size_t>(kSeconds) * 100 * 8 / 10;
+  // Every state: one after each IMU sample and each GPS epoch.
+  EXPECT_GE(states_heading.messages, static_cast<std::size_t>(kRows + kSeconds));
+  // Live: 100 Hz for about kSeconds, less the ticks a slow VM misses (plain emulation under
+  // load missed half of them); the floor only makes sure that there was something to compare.
+  const std::size_t live_at_least = static_cast<std::size_t>(kSeconds) * 10;
   expectAllEqual("live HEADING", test::readEstimates<headingd::heading_t>(dir.file("live.lcm"), "HEADING"),
                  states_heading, live_at_least);
   expectAllEqual("live ATTITUDE", test::readEstimates<headingd::attitude_t>(dir.file("live.lcm"), "ATTITUDE"),
                  states_attitude, live_at_least);
   // The daemon's replay at 4x publishes at 100 Hz too: about a quarter as many messages.
-  const std::size_t replay_at_least = live_at_least / 4 * 8 / 10;
+  const std::size_t replay_at_least = live_at_least / 4;
   expectAllEqual("daemon replay HEADING", test::readEstimates<headingd::heading_t>(dir.file("replay.lcm"), "HEADING"),
                  states_heading, replay_at_least);
   expectAllEqual("daemon replay ATTITUDE",

@@ -7,7 +7,7 @@
 # OUTDIR/NAME.counters.json (headingd-replay's counters, without its timing field).
 # Needs $golden_repo, $golden_replay, $golden_sim, $golden_calibrate. A case may write more
 # outputs (golden_extra_outputs NAME lists them): they are compared whole.
-golden_cases=(broad05 sim_urban_walk broad32_calibrated)
+golden_cases=(broad05 sim_urban_walk broad32_calibrated recording_walk)
 
 golden_run_case() {
   local name=$1 out=$2 err
@@ -29,6 +29,11 @@ golden_run_case() {
       "$golden_replay" --imu-csv "$golden_repo/tests/data/broad/32_disturbed_attached_magnet_1cm.csv.gz" \
         --config "$golden_repo/config/estimator.toml" --calib "$out/$name.calibration.toml" \
         --out "$out/$name.csv" 2>"$err" ;;
+    recording_walk)  # a black-box recording of a live run (vcan + pty in the VM; tests/data/recordings)
+      mkdir -p "$out/$name.rec"
+      tar -xzf "$golden_repo/tests/data/recordings/sim-walk-30s.tar.gz" -C "$out/$name.rec"
+      "$golden_replay" --recording "$out/$name.rec/sim-walk-30s" --out "$out/$name.csv" 2>"$err"
+      rm -rf "$out/$name.rec" ;;
     *) echo "golden: unknown case $name" >&2; return 2 ;;
   esac
   # The per-sample time is a timing figure, not an outcome.

@@ -2,7 +2,6 @@
 // The daemon put together: the configuration → the World Magnetic Model, one ring per source
 // and sample kind, the sources, the LCM publisher, the estimator thread. The main thread
 // only waits for signals (main.cpp).
-#include <atomic>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -54,7 +53,6 @@ class Daemon {
   std::vector<std::unique_ptr<recording::LineSink>> recorder_sinks_;  // can, gps, estimator
   RecorderSinks source_sinks_;
   RecordingStart recording_start_;
-  std::atomic<bool> recording_{false};  // the recorder started: its streams take lines
   std::vector<std::unique_ptr<SampleRing<ImuRingEntry>>> imu_rings_;
   std::vector<std::unique_ptr<SampleRing<GpsRingEntry>>> gps_rings_;
   PlaybackClock playback_clock_;  // shared by the log sources; before them, so it outlives them

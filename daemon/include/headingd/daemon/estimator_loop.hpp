@@ -27,6 +27,7 @@
 #include "headingd/daemon/lcm_publisher.hpp"
 #include "headingd/daemon/repeat_limiter.hpp"
 #include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/recorder.hpp"
 #include "headingd/recording/stream_recorders.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
@@ -65,9 +66,9 @@ class EstimatorLoop {
 
   LoopSummary summary() const;
 
-  // The black box's estimator stream (null: not recording): where each GPS epoch went in.
-  // Set before run().
-  void setRecorder(recording::LineSink* sink);
+  // The black box (null: not recording): its estimator stream gets where each GPS epoch went
+  // in, and STATUS its counters. Set before run().
+  void setRecorder(recording::LineSink* sink, const Recorder* recorder);
 
  private:
   // The steps of one tick, in order.
@@ -118,6 +119,7 @@ class EstimatorLoop {
   std::size_t placed_next_ = 0;
   std::uint64_t imu_processed_ = 0;  // every IMU sample given to the pipeline, used or not
   std::unique_ptr<recording::EstimatorStreamRecorder> recorder_;
+  const Recorder* recorder_status_ = nullptr;
 
   // Freshness.
   std::int64_t start_ns_ = 0;
