@@ -1,6 +1,5 @@
 #include "headingd/files/decimal_number.hpp"
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -8,95 +7,30 @@
 namespace headingd::files {
 namespace {
 
-// 10^0 .. 10^22: every one exact in a double (5^22 < 2^53).
-constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                   1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+// 10^0 .. 10^9, exact as doubles and as integers.
+constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
 constexpr std::uint64_t kIntPowersOfTen[] = {1,      10,      100,      1000,      10000,
                                              100000, 1000000, 10000000, 100000000, 1000000000};
 
-bool isDigit(char c) { return static_cast<unsigned char>(c - '0') < 10; }
+// "00" .. "99": two digits per division, half the divisions of one digit at a time.
+constexpr char kDigitPairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
 
 // Writes `value` as exactly `width` digits with leading zeros.
 char* writeDigits(char* out, std::uint64_t value, int width) {
-  for (int i = width - 1; i >= 0; --i) {
-    out[i] = static_cast<char>('0' + value % 10);
-    value /= 10;
+  int i = width;
+  while (i >= 2) {
+    i -= 2;
+    std::memcpy(out + i, kDigitPairs + 2 * (value % 100), 2);
+    value /= 100;
   }
+  if (i == 1) out[0] = static_cast<char>('0' + value % 10);
   return out + width;
 }
 
 }  // namespace
-
-namespace {
-
-// Eight ASCII digits at p, read as one little-endian word and combined pairwise (the SWAR
-// technique of D. Lemire's and others' fast number parsers): about 3 multiplications for
-// 8 digits instead of 8 dependent multiply-adds. Checks that all 8 bytes are digits.
-bool eightDigits(const char* p, std::uint64_t* value) {
-  std::uint64_t word;
-  std::memcpy(&word, p, 8);
-  if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap64(word);
-  if ((((word + 0x4646464646464646) | (word - 0x3030303030303030)) & 0x8080808080808080) != 0) return false;
-  word = ((word & 0x0F0F0F0F0F0F0F0F) * 2561) >> 8;           // 2561 = 10 * 2^8 + 1: digit pairs
-  word = ((word & 0x00FF00FF00FF00FF) * 6553601) >> 16;       // 100 * 2^16 + 1: groups of four
-  word = ((word & 0x0000FFFF0000FFFF) * 42949672960001) >> 32;  // 10000 * 2^32 + 1: all eight
-  *value = word;
-  return true;
-}
-
-// Digits from p on into *mantissa; returns one past the last digit, counts them in *count.
-const char* readDigits(const char* p, const char* last, std::uint64_t* mantissa, int* count) {
-  std::uint64_t eight = 0;
-  while (last - p >= 8 && *count <= 11 && eightDigits(p, &eight)) {  // stays below 2^64: 19 digits at most
-    *mantissa = *mantissa * 100000000 + eight;
-    *count += 8;
-    p += 8;
-  }
-  for (; p != last && isDigit(*p); ++p) {
-    if (*count < 19) *mantissa = *mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
-    ++*count;  // past 19 digits the mantissa is wrong, and the count sends the number to from_chars
-  }
-  return p;
-}
-
-}  // namespace
-
-std::from_chars_result readDecimal(const char* first, const char* last, double* value) {
-  const char* p = first;
-  const bool negative = p != last && *p == '-';
-  if (negative) ++p;
-  std::uint64_t mantissa = 0;
-  int digits = 0;  // all digits, leading zeros too (they only make the count safe-side)
-  const char* integer_end = readDigits(p, last, &mantissa, &digits);
-  int exponent = 0;  // power of ten to apply to the mantissa
-  p = integer_end;
-  if (p != last && *p == '.') {
-    const int before = digits;
-    p = readDigits(p + 1, last, &mantissa, &digits);
-    exponent = before - digits;
-  }
-  // No digit, a mantissa that is not exact in a double, or possibly wrapped: the general way.
-  if (digits == 0 || digits > 19 || mantissa > (std::uint64_t{1} << 53)) return std::from_chars(first, last, *value);
-  if (p != last && (*p == 'e' || *p == 'E')) {
-    const char* q = p + 1;
-    bool exponent_negative = false;
-    if (q != last && (*q == '-' || *q == '+')) exponent_negative = *q++ == '-';
-    if (q != last && isDigit(*q)) {  // else "1e" or "1e+": from_chars stops at the 'e', so does this
-      int written = 0;
-      for (; q != last && isDigit(*q); ++q) {
-        if (written > 1000) return std::from_chars(first, last, *value);
-        written = written * 10 + (*q - '0');
-      }
-      exponent += exponent_negative ? -written : written;
-      p = q;
-    }
-  }
-  if (exponent < -22 || exponent > 22) return std::from_chars(first, last, *value);
-  auto m = static_cast<double>(mantissa);  // exact: at most 2^53
-  m = exponent < 0 ? m / kPowersOfTen[-exponent] : m * kPowersOfTen[exponent];
-  *value = negative ? -m : m;
-  return {p, std::errc()};
-}
 
 namespace {
 
@@ -129,7 +63,12 @@ std::uint64_t roundScaled(double magnitude, int digits) {
 template <int Digits>
 char* writeScaledAs(char* out, std::uint64_t n) {
   constexpr std::uint64_t unit = kIntPowersOfTen[Digits];
-  out = std::to_chars(out, out + 24, n / unit).ptr;
+  const std::uint64_t whole = n / unit;
+  if (whole < 10) {  // the common case of quaternion components and small numbers
+    *out++ = static_cast<char>('0' + whole);
+  } else {
+    out = std::to_chars(out, out + 24, whole).ptr;
+  }
   if constexpr (Digits == 0) return out;
   *out++ = '.';
   return writeDigits(out, n % unit, Digits);

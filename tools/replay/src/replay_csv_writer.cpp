@@ -26,15 +26,15 @@ char* putFixed(char* p, double v, int digits) { return files::writeFixed(p, v, d
 }  // namespace
 
 ReplayCsvWriter::ReplayCsvWriter(const std::string& path, bool with_gps)
-    : path_(path), with_gps_(with_gps), buffer_(kBufferBytes + kMaxRowBytes) {
+    : path_(path), with_gps_(with_gps), buffer_(std::make_unique_for_overwrite<char[]>(kBufferBytes + kMaxRowBytes)) {
   file_ = std::fopen(path.c_str(), "w");
   if (file_ == nullptr) throw std::runtime_error(path + ": cannot open for writing");
   used_ = static_cast<std::size_t>(
-      put(buffer_.data(), with_gps ? "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_mag_deg,declination_deg,"
+      put(buffer_.get(), with_gps ? "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_mag_deg,declination_deg,"
                                      "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,"
                                      "mag_disturbed\n"
                                    : "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg\n") -
-      buffer_.data());
+      buffer_.get());
 }
 
 ReplayCsvWriter::~ReplayCsvWriter() {
@@ -44,7 +44,7 @@ ReplayCsvWriter::~ReplayCsvWriter() {
 }
 
 void ReplayCsvWriter::write(std::int64_t t_ns, const core::HeadingOutput& h) {
-  char* p = buffer_.data() + used_;
+  char* p = buffer_.get() + used_;
   const core::EstimatorOutput& e = h.attitude;
   p = putGeneral9(p, static_cast<double>(t_ns) * 1e-9);
   if (!e.valid) {
@@ -75,7 +75,7 @@ void ReplayCsvWriter::write(std::int64_t t_ns, const core::HeadingOutput& h) {
     }
     *p++ = '\n';
   }
-  used_ = static_cast<std::size_t>(p - buffer_.data());
+  used_ = static_cast<std::size_t>(p - buffer_.get());
   flushIfFull();
 }
 
@@ -84,7 +84,7 @@ void ReplayCsvWriter::flushIfFull() {
 }
 
 void ReplayCsvWriter::flush() {
-  if (used_ > 0 && std::fwrite(buffer_.data(), 1, used_, file_) != used_) failed_ = true;
+  if (used_ > 0 && std::fwrite(buffer_.get(), 1, used_, file_) != used_) failed_ = true;
   used_ = 0;
 }
 

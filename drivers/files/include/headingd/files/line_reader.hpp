@@ -3,9 +3,9 @@
 // buffer, so memory stays flat whatever the file's length. A line is handed out as a view
 // into the buffer, valid until the next call; no copy, no allocation per line.
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace headingd::files {
 
@@ -30,7 +30,8 @@ class LineReader {
 
   std::string path_;
   void* file_ = nullptr;    // gzFile (kept out of this header so users need not include zlib)
-  std::vector<char> buffer_;
+  std::unique_ptr<char[]> buffer_;  // not zeroed: every byte used is read first
+  std::size_t capacity_ = 0;
   std::size_t begin_ = 0;   // first byte not handed out yet
   std::size_t end_ = 0;     // one past the last byte read
   bool at_eof_ = false;

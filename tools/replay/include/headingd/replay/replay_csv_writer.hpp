@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
-#include <vector>
+#include <memory>
 
 #include "headingd/core/heading_pipeline.hpp"
 
@@ -34,7 +34,7 @@ class ReplayCsvWriter {
   std::string path_;
   std::FILE* file_ = nullptr;
   bool with_gps_ = false;
-  std::vector<char> buffer_;
+  std::unique_ptr<char[]> buffer_;  // not zeroed: only written bytes are read
   std::size_t used_ = 0;
   bool failed_ = false;
 };
