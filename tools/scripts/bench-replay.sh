@@ -32,11 +32,14 @@ g++ -std=c++17 -O2 -g -DNDEBUG -I"$vqf_dir" "$here/tests/bench/vqf/vqf_csv_drive
 zcat -f "$trial" >"$work/plain.csv"  # plain CSV in: the comparison is of the tools, not of zlib
 echo "rows: $(($(wc -l <"$work/plain.csv") - 1))"
 
-# measure CMD...: prints "WALL_SECONDS PEAK_RSS_KB" of one run.
+# measure CMD...: prints "WALL_SECONDS PEAK_RSS_KB" of one run: the wall time from bash's
+# microsecond clock around /usr/bin/time (whose own %e has 10 ms steps), the RSS from it.
 measure() {
-  /usr/bin/time -f "%e %M" -o "$work/time" "$@" >/dev/null 2>"$work/stderr" ||
+  local start=$EPOCHREALTIME
+  /usr/bin/time -f "%M" -o "$work/time" "$@" >/dev/null 2>"$work/stderr" ||
     { cat "$work/stderr" >&2; exit 1; }
-  tail -1 "$work/time"
+  local end=$EPOCHREALTIME
+  echo "$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.4f", b - a }') $(tail -1 "$work/time")"
 }
 
 for ((i = 1; i <= runs; ++i)); do
@@ -47,7 +50,7 @@ done | tee "$work/runs"
 awk '{ r[NR] = $4; v[NR] = $10; q[NR] = ($10 > 0 ? $4 / $10 : 0) }
   function median(a, n,   i, j, t) { for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
     return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2 }
-  END { printf "median wall time: headingd-replay %.3f s, VQF driver %.3f s; median of the pairwise ratios replay / VQF %.3f\n",
+  END { printf "median wall time: headingd-replay %.4f s, VQF driver %.4f s; median of the pairwise ratios replay / VQF %.3f\n",
         median(r, NR), median(v, NR), median(q, NR) }' "$work/runs"
 
 # The trial 16 times over: each copy's times shifted by the previous copies' span plus one

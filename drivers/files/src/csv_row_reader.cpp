@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstring>
 
+#include "headingd/files/decimal_number.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::files {
@@ -105,7 +106,7 @@ bool CsvRowReader::parseFast(std::string_view line, std::span<double> values) co
     if (slot < 0) continue;
     while (p != end && isBlank(*p)) ++p;
     if (p != end && *p == '+') ++p;
-    const auto [ptr, ec] = std::from_chars(p, end, values[static_cast<std::size_t>(slot)]);
+    const auto [ptr, ec] = readDecimal(p, end, &values[static_cast<std::size_t>(slot)]);
     if (ec != std::errc() || ptr == p) return false;
     p = ptr;
     while (p != end && (isBlank(*p) || *p == '\r')) ++p;

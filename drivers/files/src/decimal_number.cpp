@@ -7,8 +7,9 @@
 namespace headingd::files {
 namespace {
 
-// 10^0 .. 10^9, exact as doubles and as integers.
-constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+// 10^0 .. 10^22: every one exact in a double (5^22 < 2^53).
+constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                   1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 constexpr std::uint64_t kIntPowersOfTen[] = {1,      10,      100,      1000,      10000,
                                              100000, 1000000, 10000000, 100000000, 1000000000};
 
@@ -90,6 +91,33 @@ char* writeScaled(char* out, std::uint64_t n, int digits) {
 }
 
 }  // namespace
+
+std::from_chars_result readDecimal(const char* first, const char* last, double* value) {
+  const char* p = first;
+  const bool negative = p != last && *p == '-';
+  if (negative) ++p;
+  std::uint64_t mantissa = 0;  // wraps past 19 digits: such numbers go to from_chars below
+  const char* digits_start = p;
+  for (; p != last && static_cast<unsigned char>(*p - '0') < 10; ++p) {
+    mantissa = mantissa * 10 + static_cast<unsigned char>(*p - '0');
+  }
+  long digits = p - digits_start, decimals = 0;
+  if (p != last && *p == '.') {
+    const char* decimals_start = ++p;
+    for (; p != last && static_cast<unsigned char>(*p - '0') < 10; ++p) {
+      mantissa = mantissa * 10 + static_cast<unsigned char>(*p - '0');
+    }
+    decimals = p - decimals_start;
+    digits += decimals;
+  }
+  if (digits == 0 || digits > 19 || mantissa > (std::uint64_t{1} << 53) || decimals > 22 ||
+      (p != last && (*p == 'e' || *p == 'E'))) {
+    return std::from_chars(first, last, *value);
+  }
+  const double magnitude = static_cast<double>(mantissa) / kPowersOfTen[decimals];
+  *value = negative ? -magnitude : magnitude;
+  return {p, std::errc()};
+}
 
 char* writeFixed(char* out, double value, int digits) {
   const double magnitude = std::fabs(value);
