@@ -4,14 +4,16 @@
 
 #include "headingd/can/can_config_toml.hpp"
 #include "headingd/daemon/can_assembler_report.hpp"
-#include "headingd/daemon/can_epoch_flush.hpp"
+#include "headingd/can/epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
 
 namespace headingd::daemon {
 namespace {
-// How often the open epoch is checked (can_epoch_flush.hpp says when it is given up on) and
+// How often the open epoch is checked (can/epoch_flush.hpp says when it is given up on) and
 // the counters are copied for STATUS.
 constexpr auto kTimerPeriod = std::chrono::milliseconds(10);
+
+std::int64_t wholeMicroseconds(std::int64_t ns) { return ns - ns % 1000; }
 }  // namespace
 
 std::unique_ptr<SourceConfig> parseCanSource(const SourceTable& table) {
@@ -23,48 +25,59 @@ std::unique_ptr<SourceConfig> parseCanSource(const SourceTable& table) {
 
 std::unique_ptr<Source> createCanSource(const SourceConfig& config, SourceContext& context) {
   const can::CanConfig& can = static_cast<const CanSourceConfig&>(config).can;
-  auto source = std::make_unique<CanImuSource>(config.table, can, context.source_index, context.addImuRing(config.table));
+  auto source = std::make_unique<CanImuSource>(config.table, can, context.source_index, context.addImuRing(config.table),
+                                               context.recorder);
   spdlog::info("source can: interface {}, DBC {}", can.interface, can.dbc_path);
   return source;
 }
 
 CanImuSource::CanImuSource(std::string name, const can::CanConfig& config, std::uint16_t source_index,
-                           SampleRing<ImuRingEntry>* imu_ring)
+                           SampleRing<ImuRingEntry>* imu_ring, const RecorderSinks* recorder)
     : AsioSource(std::move(name), source_index, Lifetime::kUntilStopped, kTimerPeriod),
       ring_(imu_ring),
       config_(config),
       dbc_(can::loadDbcFile(config.dbc_path)) {
   codec_ = std::make_unique<can::ImuFrameCodec>(config_, dbc_);
   assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(config_));
-  flush_age_ns_ = epochFlushAgeNs(config_, *codec_);
+  flush_age_ns_ = can::epochFlushAgeNs(config_, *codec_);
   receiver_ = std::make_unique<can::SocketCanReceiver>(io(), can::receiverSettingsFrom(config_, *codec_),
                                                       [this](const can::CanFrame& f) { onFrame(f); });
+  if (recorder != nullptr && recorder->can != nullptr) {
+    recorder_ = std::make_unique<recording::CanStreamRecorder>(*recorder->can, config_.interface,
+                                                               recorder->can_time_offset_ns);
+  }
 }
 
 CanImuSource::~CanImuSource() { stop(); }
 
 void CanImuSource::pushSamples(const can::AssembledSamples& samples) {
-  if (samples.count == 0) return;
-  // Kernel timestamps are CLOCK_REALTIME; the estimator's axis is CLOCK_MONOTONIC. The
-  // offset is read now, microseconds after the frame, so a wall-clock step moves at most
-  // the samples released across it.
-  const std::int64_t realtime_minus_monotonic = realtimeNs() - monotonicNs();
   for (int i = 0; i < samples.count; ++i) {
     ImuRingEntry e;
     e.sample = samples.samples[static_cast<std::size_t>(i)];
-    if (e.sample.t_ns != 0) {
-      e.sample.t_ns -= realtime_minus_monotonic;
-    } else {
-      e.sample.t_ns = monotonicNs();  // no kernel timestamp: the best we know
-    }
     e.arrival_mono_ns = e.sample.t_ns;
-    push(*ring_, e);
+    if (!push(*ring_, e) && recorder_ != nullptr) recorder_->dropped(e.sample.t_ns);
   }
 }
 
-void CanImuSource::onFrame(const can::CanFrame& frame) { pushSamples(assembler_->push(frame)); }
+void CanImuSource::onFrame(const can::CanFrame& received) {
+  // The offset is read now, microseconds after the frame, so a wall-clock step moves at most
+  // the frames received across it.
+  can::CanFrame frame = received;
+  const std::int64_t t = received.kernel_time_ns != 0 ? received.kernel_time_ns - (realtimeNs() - monotonicNs())
+                                                      : monotonicNs();  // no kernel timestamp: the best we know
+  frame.kernel_time_ns = wholeMicroseconds(t);
+  if (recorder_ != nullptr) recorder_->frame(frame);
+  pushSamples(assembler_->push(frame));
+}
 
-void CanImuSource::onTick() { pushSamples(flushEpoch(*assembler_, config_, flush_age_ns_, realtimeNs())); }
+void CanImuSource::onTick() {
+  const std::int64_t now = wholeMicroseconds(monotonicNs());
+  const bool was_open = assembler_->hasOpenEpoch();
+  const can::AssembledSamples samples = can::flushEpoch(*assembler_, config_, flush_age_ns_, now);
+  // Only a flush that closed an epoch changes anything, so only that one is recorded.
+  if (recorder_ != nullptr && was_open && !assembler_->hasOpenEpoch()) recorder_->flushed(now);
+  pushSamples(samples);
+}
 
 void CanImuSource::report(SourceReport& out) const {
   const can::ReceiverStatus r = receiver_->status();

@@ -6,7 +6,7 @@
 
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/can_assembler_report.hpp"
-#include "headingd/daemon/can_epoch_flush.hpp"
+#include "headingd/can/epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
 #include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/numeric_csv.hpp"
@@ -52,7 +52,7 @@ CandumpLogSource::CandumpLogSource(std::string name, const CandumpLogSourceConfi
       timer_(io()) {
   codec_ = std::make_unique<can::ImuFrameCodec>(can_config_, dbc_);
   assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(can_config_));
-  flush_age_ns_ = epochFlushAgeNs(can_config_, *codec_);
+  flush_age_ns_ = can::epochFlushAgeNs(can_config_, *codec_);
   {
     // Read whole (a 10 min, 100 Hz log is ~10 MB of text, ~6 MB of frames) so that playing
     // never touches the disk and --check-config sees every line.
@@ -94,7 +94,7 @@ void CandumpLogSource::playDue() {
   while (next_frame_ < frames_.size() && clock_->dueMonoNs(frames_[next_frame_].kernel_time_ns) <= now) {
     const can::CanFrame& frame = frames_[next_frame_++];
     // The flush on the log's own time: what a receiver with perfect timing would have seen.
-    pushSamples(flushEpoch(*assembler_, can_config_, flush_age_ns_, frame.kernel_time_ns));
+    pushSamples(can::flushEpoch(*assembler_, can_config_, flush_age_ns_, frame.kernel_time_ns));
     pushSamples(assembler_->push(frame));
     frames_played_.fetch_add(1, std::memory_order_relaxed);
   }

@@ -29,12 +29,13 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   toml::table doc = core::parseTomlDocument(text, source);
 
   // The daemon's own tables; the sources' are the registry's.
-  std::vector<std::string> tables = {"daemon", "log", "realtime", "rings", "lcm", "estimator"};
+  std::vector<std::string> tables = {"daemon", "log", "realtime", "rings", "lcm", "estimator", "recorder"};
   for (std::string& t : sourceTableNames()) tables.push_back(std::move(t));
   core::rejectUnknownTables(doc, source, tables);
 
   DaemonConfig c;
   c.source = source;
+  c.text = text;
 
   TomlTableReader daemon(doc["daemon"].as_table(), source, "daemon");
   c.rate_hz = daemon.number("rate_hz", c.rate_hz, 1.0, 2000.0, "Hz");
@@ -91,6 +92,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   lcm.rejectUnknownKeys();
 
   c.estimator = core::parseEstimatorTable(doc["estimator"].as_table(), source);
+  c.recorder = parseRecorderTable(doc["recorder"].as_table(), source, base_dir);
 
   c.sources = parseSourceTables(doc, source, base_dir);
   return c;

@@ -3,12 +3,39 @@
 #include <spdlog/spdlog.h>
 
 #include "headingd/core/wmm_coefficients.hpp"
+#include "headingd/daemon/can_imu_source.hpp"
 #include "headingd/daemon/clocks.hpp"
+#include "headingd/daemon/recording_files.hpp"
+#include "headingd/daemon/serial_gps_source.hpp"
+#include "headingd/recording/recording_format.hpp"
 #include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/source_registry.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::daemon {
+namespace {
+
+// A recorder stream as the sources' line sink; lines are refused (and the source carries on)
+// until the recorder has started.
+class RecorderLineSink final : public recording::LineSink {
+ public:
+  RecorderLineSink(RecorderStream& stream, const std::atomic<bool>& recording) : stream_(stream), recording_(recording) {}
+  bool write(std::string_view line) override {
+    return recording_.load(std::memory_order_acquire) && stream_.write(line);
+  }
+
+ private:
+  RecorderStream& stream_;
+  const std::atomic<bool>& recording_;
+};
+
+bool hasLiveSource(const SourceConfigs& configs) {
+  const auto* can = configs.find<CanSourceConfig>();
+  const auto* gps = configs.find<SerialGpsSourceConfig>();
+  return (can != nullptr && can->enabled) || (gps != nullptr && gps->enabled);
+}
+
+}  // namespace
 
 Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   if (!config_.wmm_path.empty()) {
@@ -17,8 +44,10 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   }
   // Each source gets its own rings (single producer each); see daemon/README.md, "Sources".
   const SourceConfigs& configs = config_.sources;
+  makeRecorder();
   SourceContext context{config_.imu_ring_capacity, config_.gps_ring_capacity, imu_rings_, gps_rings_,
-                        configs.playback, &playback_clock_, 0, std::nullopt};
+                        configs.playback, &playback_clock_, 0, std::nullopt,
+                        recorder_ != nullptr ? &source_sinks_ : nullptr};
   sources_ = makeSources(configs, context);
   // The log sources play on one clock, which starts at the earliest first timestamp of the
   // logs (playback_clock.hpp).
@@ -33,6 +62,34 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
 
 Daemon::~Daemon() { stop(); }
 
+void Daemon::makeRecorder() {
+  const RecorderConfig& rc = config_.recorder;
+  if (!rc.enabled || rc.dir.empty()) return;
+  if (!hasLiveSource(config_.sources)) return;  // file sources: their files are the record
+  recorder_ = std::make_unique<Recorder>(rc, std::vector<std::string>{std::string(recording::kCanStream),
+                                                                      std::string(recording::kGpsStream),
+                                                                      std::string(recording::kEstimatorStream)});
+  for (const std::string_view stream : {recording::kCanStream, recording::kGpsStream, recording::kEstimatorStream}) {
+    recorder_sinks_.push_back(std::make_unique<RecorderLineSink>(recorder_->stream(stream), recording_));
+  }
+  source_sinks_.can = recorder_sinks_[0].get();
+  source_sinks_.gps = recorder_sinks_[1].get();
+  // The offset the CAN stream's candump times are written with, fixed before the sources are made.
+  recording_start_ = recordingStartNow(HEADINGD_VERSION);
+  source_sinks_.can_time_offset_ns = recording_start_.can_time_offset_ns;
+}
+
+void Daemon::startRecorder() {
+  if (recorder_ == nullptr) return;
+  try {
+    recorder_->start(recordingFiles(config_, recording_start_));
+    recording_.store(true, std::memory_order_release);
+    spdlog::info("black box: recording the inputs to {}", recorder_->folder());
+  } catch (const std::exception& e) {
+    spdlog::error("black box: not recording: {}", e.what());
+  }
+}
+
 void Daemon::start() {
   applyMemoryLock(config_.realtime);
   publisher_ = std::make_unique<LcmPublisher>(config_.lcm.url);
@@ -46,6 +103,8 @@ void Daemon::start() {
   std::vector<Source*> sources;
   for (auto& s : sources_) sources.push_back(s.get());
   loop_ = std::make_unique<EstimatorLoop>(config_, wmm_.get(), imu, gps, sources, *publisher_, notifier_);
+  startRecorder();
+  if (recorder_ != nullptr) loop_->setRecorder(recorder_sinks_[2].get(), recorder_.get());
   loop_thread_ = std::thread([this] { loop_->run(); });
   // Read by the log sources from their own threads, which start below.
   playback_clock_.start_mono_ns = monotonicNs() + std::llround(config_.sources.playback.start_delay_s * 1e9);
@@ -69,6 +128,7 @@ void Daemon::stop() {
   }
   if (loop_ != nullptr) loop_->stop();
   if (loop_thread_.joinable()) loop_thread_.join();
+  if (recorder_ != nullptr) recorder_->stop();  // after every producer
 }
 
 void Daemon::requestCalibrationReload() {

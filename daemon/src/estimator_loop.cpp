@@ -22,18 +22,6 @@ core::CalibratedImuStream loadCalibration(const std::string& path) {
   return core::CalibratedImuStream(core::parseImuCalibration(files::readMaybeGzipFile(path), path));
 }
 
-bool gateUsed(core::SampleVerdict v) {
-  switch (v) {
-    case core::SampleVerdict::kAccepted:
-    case core::SampleVerdict::kFirst:
-    case core::SampleVerdict::kGap:
-    case core::SampleVerdict::kClockJump:
-      return true;
-    default:
-      return false;
-  }
-}
-
 // One source's samples come in order; several sources are merged by sensor time, ties by
 // arrival (std::sort: no temporary buffer, unlike stable_sort).
 bool imuByTime(const ImuRingEntry& a, const ImuRingEntry& b) {
@@ -70,6 +58,7 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
   for (const auto* r : gps_rings_) gps_capacity += r->capacity();
   imu_batch_.reserve(imu_capacity);
   gps_order_.reserve(2 * gps_capacity + 1);
+  placed_gps_.reserve(2 * gps_capacity + 1);
   for (const Source* s : sources_) source_names_.push_back(s->name());
   source_reports_.resize(sources_.size());
   ring_drops_seen_.assign(imu_rings_.size() + gps_rings_.size(), 0);
@@ -157,6 +146,10 @@ void EstimatorLoop::drainRings() {
   for (auto* ring : imu_rings_) ring->drain([this](const ImuRingEntry& e) { imu_batch_.push_back(e); });
   for (auto* ring : gps_rings_) {
     ring->drain([this](const GpsRingEntry& e) {
+      if (e.after_imu_samples >= 0) {
+        placed_gps_.push_back(e);  // in the recording's order, which is the live order
+        return;
+      }
       if (gps_order_.held() == gps_order_.capacity()) {  // never expected: GPS is slow
         gps_order_.releaseOldest([this](const GpsRingEntry& oldest) { processGps(oldest, realtimeNs() / 1000); });
         ++gps_epochs_forced_;
@@ -167,7 +160,10 @@ void EstimatorLoop::drainRings() {
 }
 
 void EstimatorLoop::putInTimeOrder() {
-  if (!std::is_sorted(imu_batch_.begin(), imu_batch_.end(), imuByTime)) {
+  // One source's samples stay in the order it pushed them (the sample gate judges a time that
+  // goes back), so the order never depends on where a tick cut the stream: a recording of
+  // one IMU replays in the same order whatever the ticks.
+  if (imu_rings_.size() > 1 && !std::is_sorted(imu_batch_.begin(), imu_batch_.end(), imuByTime)) {
     std::sort(imu_batch_.begin(), imu_batch_.end(), imuByTime);
   }
   gps_order_.sortHeld(gpsByTime);
@@ -176,14 +172,34 @@ void EstimatorLoop::putInTimeOrder() {
 void EstimatorLoop::feedPipeline(std::int64_t wake_ns, bool last_tick, std::int64_t utime_us) {
   consumed_this_tick_ = false;
   const auto processGpsNow = [this, utime_us](const GpsRingEntry& e) { processGps(e, utime_us); };
+  releasePlacedEpochs(utime_us);
   for (const ImuRingEntry& e : imu_batch_) {
     processImu(e, utime_us);
     gps_order_.afterImu(e.sample.t_ns, processGpsNow);
+    releasePlacedEpochs(utime_us);
   }
   // Without IMU data an epoch would wait for ever: then it goes in as it is (also on the
   // last tick, when a file's last epoch is later than its last IMU sample).
   const bool imu_stale = !imu_.any_used || wake_ns - imu_.last_used_arrival_ns > imu_timeout_ns_;
   if (imu_stale || last_tick) gps_order_.releaseAll(processGpsNow);
+  if (last_tick) {
+    while (placed_next_ < placed_gps_.size()) processGps(placed_gps_[placed_next_++], utime_us);
+  }
+}
+
+void EstimatorLoop::releasePlacedEpochs(std::int64_t utime_us) {
+  while (placed_next_ < placed_gps_.size() &&
+         static_cast<std::uint64_t>(placed_gps_[placed_next_].after_imu_samples) <= imu_processed_) {
+    processGps(placed_gps_[placed_next_++], utime_us);
+  }
+  if (placed_next_ == placed_gps_.size()) {
+    placed_gps_.clear();
+    placed_next_ = 0;
+  }
+}
+
+void EstimatorLoop::setRecorder(recording::LineSink* sink) {
+  recorder_ = sink != nullptr ? std::make_unique<recording::EstimatorStreamRecorder>(*sink) : nullptr;
 }
 
 void EstimatorLoop::logRingDrops(std::int64_t wake_ns) {
@@ -222,8 +238,9 @@ void EstimatorLoop::processImu(const ImuRingEntry& raw, std::int64_t utime_us) {
     }
   }
   const core::SampleVerdict verdict = pipeline_.process(e.sample);
+  ++imu_processed_;
   imu_.last_any_arrival_ns = std::max(imu_.last_any_arrival_ns, e.arrival_mono_ns);
-  if (gateUsed(verdict)) {
+  if (core::sampleUsed(verdict)) {
     imu_.any_used = true;
     consumed_this_tick_ = true;
     imu_.last_used_arrival_ns = e.arrival_mono_ns;
@@ -243,6 +260,7 @@ void EstimatorLoop::processImu(const ImuRingEntry& raw, std::int64_t utime_us) {
 }
 
 void EstimatorLoop::processGps(const GpsRingEntry& e, std::int64_t utime_us) {
+  if (recorder_ != nullptr) recorder_->gpsPlaced(e.observation.t_ns, imu_processed_);
   pipeline_.processGps(e.observation);
   ++gps_epochs_processed_;
   if (config_.lcm.publish_gps) {
@@ -326,6 +344,7 @@ void EstimatorLoop::reloadCalibration() {
   try {
     correction_ = loadCalibration(config_.calibration_path);
     mag_calibration_in_use_ = true;
+    if (recorder_ != nullptr) recorder_->calibrationReloaded(imu_.last_used_t_ns, imu_processed_);
     spdlog::info("SIGHUP: calibration reloaded from {}", config_.calibration_path);
   } catch (const std::exception& e) {
     spdlog::error("SIGHUP: calibration not reloaded, keeping the one in use: {}", e.what());

@@ -20,16 +20,21 @@ std::unique_ptr<SourceConfig> parseSerialGpsSource(const SourceTable& table) {
 std::unique_ptr<Source> createSerialGpsSource(const SourceConfig& config, SourceContext& context) {
   const nmea::SerialGpsConfig& gps = static_cast<const SerialGpsSourceConfig&>(config).gps;
   auto source =
-      std::make_unique<SerialGpsSource>(config.table, gps, context.source_index, context.addGpsRing(config.table));
+      std::make_unique<SerialGpsSource>(config.table, gps, context.source_index, context.addGpsRing(config.table),
+                                        context.recorder);
   spdlog::info("source gps: {} at {} baud", gps.device, gps.baud);
   return source;
 }
 
 SerialGpsSource::SerialGpsSource(std::string name, const nmea::SerialGpsConfig& config, std::uint16_t source_index,
-                                 SampleRing<GpsRingEntry>* gps_ring)
+                                 SampleRing<GpsRingEntry>* gps_ring, const RecorderSinks* recorder)
     : AsioSource(std::move(name), source_index, Lifetime::kUntilStopped, kSnapshotPeriod), ring_(gps_ring) {
   reader_ = std::make_unique<nmea::SerialGpsReader>(
       io(), config, [this](const nmea::Fix& fix, std::int64_t receive_ns) { onFix(fix, receive_ns); });
+  if (recorder != nullptr && recorder->gps != nullptr) {
+    recorder_ = std::make_unique<recording::GpsStreamRecorder>(*recorder->gps);
+    reader_->setInputTap(recorder_.get());
+  }
 }
 
 SerialGpsSource::~SerialGpsSource() { stop(); }

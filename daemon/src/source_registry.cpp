@@ -7,6 +7,7 @@
 #include "headingd/daemon/candump_log_source.hpp"
 #include "headingd/daemon/imu_csv_source.hpp"
 #include "headingd/daemon/nmea_log_source.hpp"
+#include "headingd/daemon/recording_source.hpp"
 #include "headingd/daemon/serial_gps_source.hpp"
 
 namespace headingd::daemon {
@@ -29,6 +30,7 @@ const std::vector<SourceKind>& sourceKinds() {
       {"imu_csv", TimeAxis::kOwnFile, &parseImuCsvSource, &createImuCsvSource},
       {"candump_log", TimeAxis::kLogClock, &parseCandumpLogSource, &createCandumpLogSource},
       {"nmea_log", TimeAxis::kLogClock, &parseNmeaLogSource, &createNmeaLogSource},
+      {"recording", TimeAxis::kLogClock, &parseRecordingSource, &createRecordingSource},
   };
   return kinds;
 }

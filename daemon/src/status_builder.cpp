@@ -127,6 +127,12 @@ void fillCounters(status_t& m, const core::EstimatorCounters& estimator, const L
   m.num_counters = static_cast<std::int32_t>(i);
 }
 
+void appendRecorderCounters(status_t& m, const RecorderCounters& recorder) {
+  auto i = static_cast<std::size_t>(m.num_counters);
+  forEachRecorderCounter(recorder, [&](std::string_view name, std::uint64_t value) { setCounter(m.counters, i++, name, value); });
+  m.num_counters = static_cast<std::int32_t>(i);
+}
+
 void formatStatusLine(const status_t& m, const core::HeadingOutput& h, Validity v, std::string& out) {
   char line[400];
   std::snprintf(line, sizeof line,

@@ -18,7 +18,7 @@
 namespace headingd::daemon::test {
 
 // config/can-headingd.toml with interface vcan0 and an absolute DBC path; epoch_window_s stays
-// as shipped (with counters the daemon's flush waits longer, daemon/src can_epoch_flush.hpp).
+// as shipped (with counters the daemon's flush waits longer, drivers/can epoch_flush.hpp).
 inline std::string vcanCanTable(const std::string& config_dir) {
   std::string table = readFile(config_dir + "/can-headingd.toml");
   table = std::regex_replace(table, std::regex("dbc = \"dbc/"), "dbc = \"" + config_dir + "/dbc/");

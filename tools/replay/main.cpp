@@ -16,6 +16,7 @@
 #include "headingd/replay/replay_csv_writer.hpp"
 #include "headingd/replay/replay_loop.hpp"
 #include "headingd/replay/replay_report.hpp"
+#include "src/recording_replay.hpp"
 
 namespace {
 
@@ -36,10 +37,20 @@ int main(int argc, char** argv) {
       "every GPS epoch). A malformed "
       "row stops the replay with exit status 1; the rows before it stay written."};
   std::string imu_csv, config, out;
-  app.add_option("--imu-csv", imu_csv, "IMU CSV: header t,gyr_x..z [rad/s],acc_x..z [m/s^2],mag_x..z [uT]")
-      ->required();
+  headingd::replay::RecordingReplayOptions recording;
+  auto* imu_option =
+      app.add_option("--imu-csv", imu_csv, "IMU CSV: header t,gyr_x..z [rad/s],acc_x..z [m/s^2],mag_x..z [uT]");
+  auto* recording_option = app.add_option(
+      "--recording", recording.dir,
+      "a black-box recording folder (daemon/README.md, \"Black box\") instead of --imu-csv: replayed in the live "
+      "run's order with its own configuration, calibration and World Magnetic Model (--config, --calib, --nmea and "
+      "--wmm do not apply); --out gets the columns of --nmea");
+  imu_option->excludes(recording_option);
+  app.add_option("--lcm-log", recording.lcm_log,
+                 "with --recording: also write HEADING and ATTITUDE after every IMU sample and GPS epoch to this LCM "
+                 "log (utime = the sample's time), to compare with an lcm-logger log of the live run");
   app.add_option("--config", config, "TOML file with an [estimator] table (config/estimator.toml lists the keys)");
-  app.add_option("--out", out, "output CSV: t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg")->required();
+  app.add_option("--out", out, "output CSV: t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg");
   std::string nmea_path, wmm_path = HEADINGD_WMM_DEFAULT_COF;
   double nmea_first_epoch_t = 0.0;
   app.add_option("--nmea", nmea_path,
@@ -59,6 +70,12 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (!recording.dir.empty()) {
+      if (out.empty() && recording.lcm_log.empty()) throw std::runtime_error("--recording needs --out or --lcm-log");
+      recording.out_csv = out;
+      return headingd::replay::replayRecording(recording);
+    }
+    if (imu_csv.empty() || out.empty()) throw std::runtime_error("--imu-csv and --out are required (or --recording)");
     const core::EstimatorParams params = loadParams(config);
     files::ImuCsvReader imu(imu_csv);
     const bool calibrated = !calib_path.empty();

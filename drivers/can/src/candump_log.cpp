@@ -136,32 +136,33 @@ std::optional<LoggedFrame> parseCandumpLine(std::string_view line, std::string* 
   return out;
 }
 
-std::string formatCandumpLine(const CanFrame& f, std::string_view interface) {
-  char buf[96];
+std::size_t formatCandumpLine(const CanFrame& f, std::string_view interface, char (&out)[kCandumpLineMaxBytes]) {
   const std::int64_t seconds = f.kernel_time_ns / 1'000'000'000;
   const std::int64_t micros = (f.kernel_time_ns % 1'000'000'000) / 1000;
-  int n = std::snprintf(buf, sizeof buf, "(%lld.%06lld) ", static_cast<long long>(seconds),
-                        static_cast<long long>(micros));
-  std::string line(buf, static_cast<std::size_t>(n));
-  line.append(interface);
-  if (f.error_frame) {
-    n = std::snprintf(buf, sizeof buf, " %08X#", static_cast<unsigned>((f.id & kErrMask) | kErrFlag));
-  } else if (f.extended) {
-    n = std::snprintf(buf, sizeof buf, " %08X#", static_cast<unsigned>(f.id & kExtendedIdMask));
-  } else {
-    n = std::snprintf(buf, sizeof buf, " %03X#", static_cast<unsigned>(f.id & kStandardIdMask));
-  }
-  line.append(buf, static_cast<std::size_t>(n));
+  const std::string_view iface = interface.substr(0, 15);
+  int n = std::snprintf(out, sizeof out, "(%lld.%06lld) %.*s", static_cast<long long>(seconds),
+                        static_cast<long long>(micros), static_cast<int>(iface.size()), iface.data());
+  std::size_t len = static_cast<std::size_t>(n);
+  const unsigned id = f.error_frame ? (f.id & kErrMask) | kErrFlag
+                      : f.extended  ? f.id & kExtendedIdMask
+                                    : f.id & kStandardIdMask;
+  n = std::snprintf(out + len, sizeof out - len, (f.error_frame || f.extended) ? " %08X#" : " %03X#", id);
+  len += static_cast<std::size_t>(n);
   if (f.remote) {
-    line.push_back('R');
-    return line;
+    out[len++] = 'R';
+    return len;
   }
   static constexpr char kHex[] = "0123456789ABCDEF";
   for (std::size_t i = 0; i < f.len && i < kClassicMaxLen; ++i) {
-    line.push_back(kHex[f.data[i] >> 4]);
-    line.push_back(kHex[f.data[i] & 0xF]);
+    out[len++] = kHex[f.data[i] >> 4];
+    out[len++] = kHex[f.data[i] & 0xF];
   }
-  return line;
+  return len;
+}
+
+std::string formatCandumpLine(const CanFrame& f, std::string_view interface) {
+  char buf[kCandumpLineMaxBytes];
+  return std::string(buf, formatCandumpLine(f, interface, buf));
 }
 
 std::optional<CanFrame> CandumpReader::next() {
@@ -171,6 +172,10 @@ std::optional<CanFrame> CandumpReader::next() {
     while (!view.empty() && (view.back() == '\r' || view.back() == ' ')) view.remove_suffix(1);
     if (view.empty()) {
       ++counters_.blank_lines;
+      continue;
+    }
+    if (view.front() == '#') {  // a note (canplayer skips every line not starting with '(')
+      ++counters_.comment_lines;
       continue;
     }
     std::string reason;

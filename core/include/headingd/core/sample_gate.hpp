@@ -20,6 +20,13 @@ enum class SampleVerdict {
 
 const char* sampleVerdictName(SampleVerdict v);
 
+// True for the verdicts under which the estimator used the sample (it moved the estimate's
+// time on); false for those it skipped.
+constexpr bool sampleUsed(SampleVerdict v) {
+  return v == SampleVerdict::kAccepted || v == SampleVerdict::kFirst || v == SampleVerdict::kGap ||
+         v == SampleVerdict::kClockJump;
+}
+
 struct SampleCounters {
   std::uint64_t accepted = 0;
   std::uint64_t gaps = 0;

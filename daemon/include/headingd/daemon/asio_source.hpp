@@ -54,11 +54,23 @@ class AsioSourceBase : public Source {
   // No further ticks (a file played to the end, so that the io_context runs out of work).
   void stopTicks();
 
-  // Pushes `entry`, stamped with this source's index, into `ring` and counts the outcome.
+  // Pushes `entry`, stamped with this source's index, into `ring` and counts the outcome;
+  // false: the ring was full and the entry is dropped.
   template <class Entry>
-  void push(SampleRing<Entry>& ring, Entry entry) {
+  bool push(SampleRing<Entry>& ring, Entry entry) {
     entry.source_index = source_index_;
-    (ring.push(entry) ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);
+    const bool pushed = ring.push(entry);
+    (pushed ? pushed_ : dropped_).fetch_add(1, std::memory_order_relaxed);
+    return pushed;
+  }
+  // The same for a file source that can wait: false leaves the entry for a later try and
+  // counts nothing.
+  template <class Entry>
+  bool tryPush(SampleRing<Entry>& ring, Entry entry) {
+    entry.source_index = source_index_;
+    if (!ring.push(entry)) return false;
+    pushed_.fetch_add(1, std::memory_order_relaxed);
+    return true;
   }
   std::uint64_t pushed() const { return pushed_.load(std::memory_order_relaxed); }
   std::uint64_t ringFullDrops() const { return dropped_.load(std::memory_order_relaxed); }

@@ -1,9 +1,11 @@
 #pragma once
 // The CAN IMU as a source: drivers/can's SocketCanReceiver on an io_context of its own
 // thread, frames through the DBC-driven epoch assembler, each sample into the IMU ring.
-// The kernel timestamps (CLOCK_REALTIME) are mapped to CLOCK_MONOTONIC as each sample is
-// released: that is both the sample's time for the estimator and its arrival time, so the
-// age at publish is measured from the frame's kernel timestamp.
+// Each frame's kernel timestamp (CLOCK_REALTIME) is put on CLOCK_MONOTONIC in whole
+// microseconds as the frame arrives, before the assembler sees it: a sample's time (its first
+// frame's) is then both its time for the estimator and its arrival time, so the age at
+// publish is measured from the kernel timestamp; and the black box's candump lines, which
+// have microseconds, hold exactly the times the assembler used.
 #include <memory>
 
 #include "headingd/can/can_config.hpp"
@@ -14,6 +16,7 @@
 #include "headingd/daemon/asio_source.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/source_registry.hpp"
+#include "headingd/recording/stream_recorders.hpp"
 
 namespace headingd::daemon {
 
@@ -28,7 +31,7 @@ class CanImuSource final : public AsioSource<can::AssemblerCounters> {
  public:
   // Reads the DBC file and checks the signal mapping (throws core::ConfigError).
   CanImuSource(std::string name, const can::CanConfig& config, std::uint16_t source_index,
-               SampleRing<ImuRingEntry>* imu_ring);
+               SampleRing<ImuRingEntry>* imu_ring, const RecorderSinks* recorder = nullptr);
   ~CanImuSource() override;
 
   const char* kind() const override { return "can"; }
@@ -47,8 +50,9 @@ class CanImuSource final : public AsioSource<can::AssemblerCounters> {
   can::DbcDatabase dbc_;
   std::unique_ptr<can::ImuFrameCodec> codec_;
   std::unique_ptr<can::EpochAssembler> assembler_;
-  std::int64_t flush_age_ns_ = 0;  // can_epoch_flush.hpp
+  std::int64_t flush_age_ns_ = 0;  // can/epoch_flush.hpp
   std::unique_ptr<can::SocketCanReceiver> receiver_;
+  std::unique_ptr<recording::CanStreamRecorder> recorder_;  // null: not recording
 };
 
 }  // namespace headingd::daemon

@@ -8,7 +8,7 @@
 // recorder's CLOCK_REALTIME, as a live source's kernel timestamp before the daemon maps it to
 // the monotonic clock), so the estimator sees the recorded timing at any speed. Arrival time:
 // the monotonic time that frame was due. The open epoch is flushed on the log's time axis
-// (before each frame, at that frame's time; can_epoch_flush.hpp), so the samples do not
+// (before each frame, at that frame's time; can/epoch_flush.hpp), so the samples do not
 // depend on how late the timer fired.
 #include <atomic>
 #include <boost/asio/steady_timer.hpp>

@@ -10,6 +10,7 @@
 
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/params_toml.hpp"  // core::ConfigError
+#include "headingd/daemon/recorder_config.hpp"
 #include "headingd/daemon/source_config.hpp"
 
 namespace headingd::daemon {
@@ -40,6 +41,7 @@ struct LogConfig {
 
 struct DaemonConfig {
   std::string source;  // the file it came from
+  std::string text;    // its text, as read (the black box keeps a copy)
   // [daemon]
   double rate_hz = 100.0;
   double imu_timeout_s = 0.5;
@@ -55,6 +57,7 @@ struct DaemonConfig {
   LcmConfig lcm;
   LogConfig log;
   core::EstimatorParams estimator;
+  RecorderConfig recorder;  // [recorder]: the black box
   // [playback] and the source tables, each read by its kind (source_registry.hpp).
   SourceConfigs sources;
 };

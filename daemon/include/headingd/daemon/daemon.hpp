@@ -2,6 +2,7 @@
 // The daemon put together: the configuration → the World Magnetic Model, one ring per source
 // and sample kind, the sources, the LCM publisher, the estimator thread. The main thread
 // only waits for signals (main.cpp).
+#include <atomic>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -11,6 +12,9 @@
 #include "headingd/daemon/estimator_loop.hpp"
 #include "headingd/daemon/lcm_publisher.hpp"
 #include "headingd/daemon/playback_clock.hpp"
+#include "headingd/daemon/recorder.hpp"
+#include "headingd/daemon/recording_files.hpp"
+#include "headingd/daemon/source_registry.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
@@ -39,8 +43,18 @@ class Daemon {
   LoopSummary summary() const;
 
  private:
+  void makeRecorder();
+  void startRecorder();
+
   DaemonConfig config_;
   std::unique_ptr<core::WorldMagneticModel> wmm_;
+  // The black box (null: off). Made before the sources (they hold its streams) and stopped
+  // after them.
+  std::unique_ptr<Recorder> recorder_;
+  std::vector<std::unique_ptr<recording::LineSink>> recorder_sinks_;  // can, gps, estimator
+  RecorderSinks source_sinks_;
+  RecordingStart recording_start_;
+  std::atomic<bool> recording_{false};  // the recorder started: its streams take lines
   std::vector<std::unique_ptr<SampleRing<ImuRingEntry>>> imu_rings_;
   std::vector<std::unique_ptr<SampleRing<GpsRingEntry>>> gps_rings_;
   PlaybackClock playback_clock_;  // shared by the log sources; before them, so it outlives them

@@ -27,6 +27,7 @@
 #include "headingd/daemon/lcm_publisher.hpp"
 #include "headingd/daemon/repeat_limiter.hpp"
 #include "headingd/daemon/ring_entries.hpp"
+#include "headingd/recording/stream_recorders.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
 #include "headingd/daemon/status_builder.hpp"
@@ -64,6 +65,10 @@ class EstimatorLoop {
 
   LoopSummary summary() const;
 
+  // The black box's estimator stream (null: not recording): where each GPS epoch went in.
+  // Set before run().
+  void setRecorder(recording::LineSink* sink);
+
  private:
   // The steps of one tick, in order.
   void tick(std::int64_t wake_ns, bool last_tick);
@@ -73,6 +78,7 @@ class EstimatorLoop {
   void logRingDrops(std::int64_t wake_ns);
   void processImu(const ImuRingEntry& e, std::int64_t utime_us);
   void processGps(const GpsRingEntry& e, std::int64_t utime_us);
+  void releasePlacedEpochs(std::int64_t utime_us);
   void publishEstimate(std::int64_t now_ns, std::int64_t utime_us);
   void publishStatus(std::int64_t now_ns, std::int64_t utime_us);
   LoopCounters loopCounters() const;
@@ -106,6 +112,12 @@ class EstimatorLoop {
   // Per-tick buffers, reserved once.
   std::vector<ImuRingEntry> imu_batch_;
   core::ImuThenGpsOrder<GpsRingEntry> gps_order_;  // GPS epochs held until an IMU sample at or after them
+  // Epochs a recording places by sample count (GpsRingEntry::after_imu_samples), held until
+  // that many IMU samples went in; [placed_next_, end) are held.
+  std::vector<GpsRingEntry> placed_gps_;
+  std::size_t placed_next_ = 0;
+  std::uint64_t imu_processed_ = 0;  // every IMU sample given to the pipeline, used or not
+  std::unique_ptr<recording::EstimatorStreamRecorder> recorder_;
 
   // Freshness.
   std::int64_t start_ns_ = 0;

@@ -24,6 +24,10 @@ struct GpsRingEntry {
   core::GpsObservation observation;
   std::int64_t arrival_mono_ns = 0;
   std::uint16_t source_index = 0;
+  // -1: the estimator takes the epoch after the first IMU sample at or after its time (live
+  // sources, logs). >= 0: after exactly this many IMU samples (a black-box recording replayed:
+  // where the live estimator took it).
+  std::int64_t after_imu_samples = -1;
 };
 
 // The time the estimator orders an epoch by (core::ImuThenGpsOrder).

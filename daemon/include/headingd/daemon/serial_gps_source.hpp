@@ -23,7 +23,7 @@ std::unique_ptr<Source> createSerialGpsSource(const SourceConfig& config, Source
 class SerialGpsSource final : public AsioSource<nmea::SerialGpsCounters> {
  public:
   SerialGpsSource(std::string name, const nmea::SerialGpsConfig& config, std::uint16_t source_index,
-                  SampleRing<GpsRingEntry>* gps_ring);
+                  SampleRing<GpsRingEntry>* gps_ring, const RecorderSinks* recorder = nullptr);
   ~SerialGpsSource() override;
 
   const char* kind() const override { return "gps_serial"; }
@@ -37,6 +37,7 @@ class SerialGpsSource final : public AsioSource<nmea::SerialGpsCounters> {
 
   SampleRing<GpsRingEntry>* ring_;
   std::unique_ptr<nmea::SerialGpsReader> reader_;
+  std::unique_ptr<recording::GpsStreamRecorder> recorder_;  // null: not recording
 };
 
 }  // namespace headingd::daemon

@@ -18,6 +18,7 @@
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
 #include "headingd/daemon/source_config.hpp"
+#include "headingd/recording/stream_recorders.hpp"
 
 namespace headingd::daemon {
 
@@ -26,6 +27,14 @@ struct SourceTable {
   const toml::table& table;
   const std::string& source;    // the configuration file, for messages
   const std::string& base_dir;  // relative paths are taken from here
+};
+
+// The black box's streams for the live sources (daemon/README.md, "Black box"); a null sink:
+// that stream is not recorded.
+struct RecorderSinks {
+  recording::LineSink* can = nullptr;
+  recording::LineSink* gps = nullptr;
+  std::int64_t can_time_offset_ns = 0;  // candump time minus estimator time (recording_format.hpp)
 };
 
 // What a factory gets from the daemon: rings of its own (the source is their single
@@ -39,6 +48,7 @@ struct SourceContext {
   const PlaybackClock* playback_clock;  // filled by the daemon before it starts the sources
   std::uint16_t source_index = 0;       // of the source being made
   std::optional<std::int64_t> log_t0_ns;  // earliest first timestamp of the log sources made so far
+  const RecorderSinks* recorder = nullptr;  // null: the live sources record nothing
 
   // A new ring named "<source_name>.imu" / "<source_name>.gps".
   SampleRing<ImuRingEntry>* addImuRing(const std::string& source_name);

@@ -14,6 +14,7 @@
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/latency_histogram.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
+#include "headingd/daemon/recorder.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
@@ -81,6 +82,9 @@ void fillTickTiming(status_t& m, const TickTiming& window);
 void fillRates(status_t& m, const PublishedCounts& now, const PublishedCounts& at_last_status, double window_s);
 // The estimator's counters (core::forEachCounter) with the loop's own in their places.
 void fillCounters(status_t& m, const core::EstimatorCounters& estimator, const LoopCounters& loop);
+// The recorder's counters ("recorder_lines_written", ...) after those already in `m`: call it
+// after fillCounters.
+void appendRecorderCounters(status_t& m, const RecorderCounters& recorder);
 
 // The one line for people, from a filled message and the estimate it describes.
 void formatStatusLine(const status_t& m, const core::HeadingOutput& h, Validity v, std::string& out);

@@ -66,7 +66,7 @@ void SerialGpsReader::stop() {
   running_ = false;
   reopen_timer_.cancel();
   closePort();
-  assembler_.endOfStream();
+  endStream();
   counters_.state = SerialGpsState::kStopped;
 }
 
@@ -144,7 +144,9 @@ void SerialGpsReader::onRead(const boost::system::error_code& ec, std::size_t n)
   if (n > 0) {
     last_receive_ns_ = monotonicNowNs();
     ++counters_.reads;
-    assembler_.feed(std::span<const std::uint8_t>(buffer_.data(), n), last_receive_ns_);
+    const std::span<const std::uint8_t> bytes(buffer_.data(), n);
+    if (tap_ != nullptr) tap_->fed(bytes, last_receive_ns_);
+    assembler_.feed(bytes, last_receive_ns_);
     armIdleTimer();
   }
   if (ec) {
@@ -173,6 +175,7 @@ void SerialGpsReader::onIdleTimer() {
   const auto quiet_for = std::chrono::nanoseconds(monotonicNowNs() - last_receive_ns_);
   const auto idle = toNs(config_.epoch_idle_s);
   if (quiet_for >= idle) {
+    if (tap_ != nullptr && assembler_.epochPending()) tap_->epochCompleted(monotonicNowNs());
     assembler_.completeEpoch();
     return;
   }
@@ -212,10 +215,15 @@ void SerialGpsReader::onPathCheck() {
 void SerialGpsReader::lose(const std::string& why) {
   ++counters_.disconnects;
   closePort();
-  assembler_.endOfStream();
+  endStream();
   setError(SerialGpsState::kWaitingForDevice, config_.device + ": " + why + "; reopening");
   backoff_ = toNs(config_.reopen_backoff_initial_s);
   scheduleOpen(backoff_);
+}
+
+void SerialGpsReader::endStream() {
+  if (tap_ != nullptr) tap_->streamEnded(monotonicNowNs());
+  assembler_.endOfStream();
 }
 
 void SerialGpsReader::closePort() {

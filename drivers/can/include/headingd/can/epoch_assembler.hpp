@@ -62,6 +62,8 @@ class EpochAssembler {
   AssembledSamples finish();
 
   const AssemblerCounters& counters() const { return counters_; }
+  // True while an epoch is being collected (flush() or finish() would close it).
+  bool hasOpenEpoch() const { return pending_.valid; }
 
  private:
   struct EpochKey {

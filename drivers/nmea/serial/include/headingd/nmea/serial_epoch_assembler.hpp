@@ -32,6 +32,17 @@ using FixHandler = std::function<void(const Fix& fix, std::int64_t receive_ns)>;
 // CR/LF, for logging and recording.
 using LineHandler = std::function<void(std::string_view line, std::int64_t receive_ns)>;
 
+// Sees every call an EpochAssembler gets from a live reader, with its time, in order: the
+// same calls replayed into another assembler with the same ParserConfig give the same Fix
+// values with the same receive times (the black box records them; drivers/recording).
+class AssemblerInputTap {
+ public:
+  virtual ~AssemblerInputTap() = default;
+  virtual void fed(std::span<const std::uint8_t> bytes, std::int64_t receive_ns) = 0;
+  virtual void epochCompleted(std::int64_t now_ns) = 0;  // completeEpoch() with an epoch pending
+  virtual void streamEnded(std::int64_t now_ns) = 0;     // endOfStream()
+};
+
 struct EpochCounters {
   std::uint64_t epochs = 0;          // Fix values delivered
   std::uint64_t late_sentences = 0;  // decoded after their epoch was delivered (not delivered)

@@ -70,6 +70,9 @@ class SerialGpsReader {
   void stop();
 
   SerialGpsCounters counters() const;
+  // Everything given to the epoch assembler from now on also goes to `tap` (null: none), on
+  // the io_context's thread. Set before start().
+  void setInputTap(AssemblerInputTap* tap) { tap_ = tap; }
   const SerialGpsConfig& config() const { return config_; }
 
  private:
@@ -83,6 +86,7 @@ class SerialGpsReader {
   void onPathCheck();
   void lose(const std::string& why);
   void closePort();
+  void endStream();  // the assembler's endOfStream(), through the tap
   void setError(SerialGpsState state, const std::string& message);
 
   SerialGpsConfig config_;
@@ -99,6 +103,7 @@ class SerialGpsReader {
   bool running_ = false;
   std::uint64_t open_dev_ = 0;  // st_rdev of the open device, to notice a re-pointed path
   SerialGpsCounters counters_;
+  AssemblerInputTap* tap_ = nullptr;
   // Handlers hold a weak_ptr to this: once the reader is gone, they do nothing.
   std::shared_ptr<int> alive_ = std::make_shared<int>(0);
 };

@@ -20,21 +20,21 @@
 #include "headingd/can/epoch_assembler.hpp"
 #include "headingd/can/imu_frame_codec.hpp"
 
-namespace headingd::daemon {
+namespace headingd::can {
 
 inline constexpr std::int64_t kCountedEpochFlushAgeNs = 500'000'000;  // 0.5 s: 50 periods of a 100 Hz IMU
 
-inline std::int64_t epochFlushAgeNs(const can::CanConfig& config, const can::ImuFrameCodec& codec) {
+inline std::int64_t epochFlushAgeNs(const CanConfig& config, const ImuFrameCodec& codec) {
   const auto window_ns = static_cast<std::int64_t>(std::llround(config.epoch_window_s * 1e9));
   return codec.sequenceBits() == 0 ? window_ns : std::max(window_ns, kCountedEpochFlushAgeNs);
 }
 
 // EpochAssembler::flush(now) gives up after the configured window; moving `now` back by the
 // difference makes it give up after `flush_age_ns` instead.
-inline can::AssembledSamples flushEpoch(can::EpochAssembler& assembler, const can::CanConfig& config,
+inline AssembledSamples flushEpoch(EpochAssembler& assembler, const CanConfig& config,
                                         std::int64_t flush_age_ns, std::int64_t now_ns) {
   const auto window_ns = static_cast<std::int64_t>(std::llround(config.epoch_window_s * 1e9));
   return assembler.flush(now_ns - (flush_age_ns - window_ns));
 }
 
-}  // namespace headingd::daemon
+}  // namespace headingd::can

@@ -1,0 +1,146 @@
+// The black box's contract, end to end on real parts (daemon/README.md, "Black box"): the
+// headingd binary runs live with its IMU on vcan0 (canplayer) and its GPS on a real pty at
+// line rate, with the recorder on and lcm-logger recording what it publishes; the recording
+// is then replayed twice, by headingd-replay --recording (every state, as fast as the CPU
+// allows) and by the daemon itself on the recording's replay.toml at 4x speed (lcm-logger
+// again). Every HEADING and ATTITUDE message with an estimate, live and replayed, must equal
+// the replay's state of the same sample, bit for bit, in every field but utime,
+// sample_age_us and validity. Run through tools/scripts/vm-run.sh (vcan0 in a VM or a
+// private namespace). HEADINGD_KEEP_RECORDING=DIR copies the recording there.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <net/if.h>
+#include <regex>
+#include <sstream>
+
+#include "daemon_test_support.hpp"
+#include "estimate_log_compare.hpp"
+#include "lcm_collector.hpp"
+#include "pty_fixture.hpp"
+#include "vcan_test_support.hpp"
+
+namespace headingd::daemon {
+namespace {
+
+using namespace std::chrono_literals;
+using test::ChildProcess;
+
+constexpr int kSeconds = 30;  // standing 10 s, then walking north (headingd-sim thesis-declination)
+constexpr int kRows = kSeconds * 100 + 1;
+
+void run(const std::string& command) { ASSERT_EQ(std::system(command.c_str()), 0) << command; }
+
+std::string onlySubfolder(const std::string& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.is_directory()) found.push_back(e.path().string());
+  }
+  return found.size() == 1 ? found.front() : std::string();
+}
+
+void expectAllEqual(const char* what, const test::EstimateMessages& published, const test::EstimateMessages& states,
+                    std::size_t at_least) {
+  const test::Comparison c = test::compareWithStates(published, states);
+  std::fprintf(stderr, "%s: %zu messages, %zu with an estimate compared, %zu equal bit for bit\n", what,
+               published.messages, c.compared, c.equal);
+  EXPECT_GE(c.compared, at_least) << what;
+  EXPECT_EQ(c.equal, c.compared) << what << ": first difference at sample_utime " << c.first_unequal_sample_utime;
+}
+
+TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
+  if (if_nametoindex("vcan0") == 0) GTEST_SKIP() << "no vcan0: run through tools/scripts/vm-run.sh";
+  test::TempDir dir;
+
+  // Inputs: the start of a simulated walk as CAN frames and NMEA epochs.
+  run(std::string(HEADINGD_SIM_BIN) + " --scenario thesis-declination --seed 1 --cof " HEADINGD_CONFIG_DIR
+      "/wmm/WMM2025.COF --out-dir " + dir.file("sim") + " >/dev/null");
+  run("head -n " + std::to_string(kRows + 1) + " " + dir.file("sim/imu.csv") + " > " + dir.file("imu.csv"));
+  const std::string can_table = test::vcanCanTable(HEADINGD_CONFIG_DIR);
+  test::writeCandumpLog(dir, HEADINGD_CANDUMP_FROM_CSV_BIN, can_table, dir.file("imu.csv"));
+  std::vector<std::string> epochs;
+  {
+    std::istringstream in(test::readFile(dir.file("sim/gps.nmea")));
+    std::string line;
+    while (std::getline(in, line) && epochs.size() <= static_cast<std::size_t>(kSeconds)) {
+      if (line.rfind("$GPGGA", 0) == 0) epochs.emplace_back();
+      if (!epochs.empty()) epochs.back() += line + "\n";
+    }
+  }
+  ASSERT_GE(epochs.size(), static_cast<std::size_t>(kSeconds));
+
+  // Live, recorded twice: by the black box (inputs) and by lcm-logger (outputs).
+  headingd::test::PtyPair gps;
+  const std::string url = "udpm://239.255.76.67:7667?ttl=0";  // alone in the VM's namespace
+  const std::string config = dir.write(
+      "live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url + "\"\n" +
+                       can_table + "\n[gps]\nenabled = true\ndevice = \"" + gps.slavePath() +
+                       "\"\nbaud = 9600\n[recorder]\ndir = \"" + dir.file("recordings") + "\"\n");
+  ChildProcess logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", dir.file("live.lcm")},
+                      dir.file("logger.out"), dir.file("logger.err"));
+  test::LcmCollector lcm(url);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  ASSERT_TRUE(test::waitUntil([&] { return !lcm.status().empty(); }, 10s)) << test::readFile(dir.file("err"));
+  ChildProcess player({"/usr/bin/canplayer", "-I", dir.file("imu.log"), "vcan0=vcan0"}, dir.file("player.out"),
+                      dir.file("player.err"));
+  ASSERT_TRUE(test::waitUntil([&] { return !lcm.imu().empty(); }, 10s)) << test::readFile(dir.file("err"));
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int j = 0; j < kSeconds; ++j) {
+    std::this_thread::sleep_until(t0 + std::chrono::seconds(j));
+    const std::string& e = epochs[static_cast<std::size_t>(j)];
+    gps.writePaced({reinterpret_cast<const std::uint8_t*>(e.data()), e.size()},
+                   headingd::test::lineBytesPerSecond(9600));
+  }
+  EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir.file("player.err"));
+  test::finishVcanRun(dir, daemon, lcm, 3s);
+  std::this_thread::sleep_for(500ms);
+  logger.signal(SIGINT);
+  EXPECT_EQ(logger.waitFor(5s), 0) << test::readFile(dir.file("logger.err"));
+
+  const std::string recording = onlySubfolder(dir.file("recordings"));
+  ASSERT_FALSE(recording.empty()) << "no recording folder: " << test::readFile(dir.file("err"));
+  if (const char* keep = std::getenv("HEADINGD_KEEP_RECORDING")) {
+    std::filesystem::copy(recording, keep, std::filesystem::copy_options::recursive);
+  }
+
+  // Replay 1: every state the estimator went through.
+  run(std::string(HEADINGD_REPLAY_BIN) + " --recording " + recording + " --lcm-log " + dir.file("states.lcm") +
+      " --out " + dir.file("states.csv") + " 2> " + dir.file("replay.err"));
+  std::fprintf(stderr, "%s", test::readFile(dir.file("replay.err")).c_str());
+  EXPECT_NE(test::readFile(dir.file("replay.err")).find("\"recording_complete\":true"), std::string::npos);
+
+  // Replay 2: the daemon on the recording's own replay configuration, at 4x.
+  {
+    std::string replay_toml = test::readFile(recording + "/replay.toml");
+    replay_toml = std::regex_replace(replay_toml, std::regex("speed = 1\\.0"), "speed = 4.0");
+    std::ofstream(recording + "/replay-4x.toml") << replay_toml;
+  }
+  ChildProcess replay_logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", dir.file("replay.lcm")},
+                             dir.file("rlogger.out"), dir.file("rlogger.err"));
+  std::this_thread::sleep_for(300ms);
+  ChildProcess replay_daemon({HEADINGD_BIN, "--config", recording + "/replay-4x.toml"}, dir.file("rout"),
+                             dir.file("rerr"));
+  EXPECT_EQ(replay_daemon.waitFor(60s), 0) << test::readFile(dir.file("rerr"));
+  std::this_thread::sleep_for(500ms);
+  replay_logger.signal(SIGINT);
+  EXPECT_EQ(replay_logger.waitFor(5s), 0) << test::readFile(dir.file("rlogger.err"));
+
+  const auto states_heading = test::readEstimates<headingd::heading_t>(dir.file("states.lcm"), "HEADING");
+  const auto states_attitude = test::readEstimates<headingd::attitude_t>(dir.file("states.lcm"), "ATTITUDE");
+  // Live: 100 Hz for about kSeconds with an estimate.
+  const std::size_t live_at_least = static_cast<std::size_t>(kSeconds) * 100 * 8 / 10;
+  expectAllEqual("live HEADING", test::readEstimates<headingd::heading_t>(dir.file("live.lcm"), "HEADING"),
+                 states_heading, live_at_least);
+  expectAllEqual("live ATTITUDE", test::readEstimates<headingd::attitude_t>(dir.file("live.lcm"), "ATTITUDE"),
+                 states_attitude, live_at_least);
+  // The daemon's replay at 4x publishes at 100 Hz too: about a quarter as many messages.
+  const std::size_t replay_at_least = live_at_least / 4 * 8 / 10;
+  expectAllEqual("daemon replay HEADING", test::readEstimates<headingd::heading_t>(dir.file("replay.lcm"), "HEADING"),
+                 states_heading, replay_at_least);
+  expectAllEqual("daemon replay ATTITUDE",
+                 test::readEstimates<headingd::attitude_t>(dir.file("replay.lcm"), "ATTITUDE"), states_attitude,
+                 replay_at_least);
+}
+
+}  // namespace
+}  // namespace headingd::daemon
