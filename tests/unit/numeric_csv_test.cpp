@@ -1,7 +1,5 @@
 // The CSV readers on real files in a temporary folder, plain and gzip.
 #include <gtest/gtest.h>
-#include <unistd.h>
-#include <zlib.h>
 
 #include <cmath>
 #include <filesystem>
@@ -11,6 +9,7 @@
 
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/numeric_csv.hpp"
+#include "temp_csv_files.hpp"
 
 namespace headingd::files {
 namespace {
@@ -19,38 +18,8 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string> kImuColumns = {"t", "gyr_x", "gyr_y", "gyr_z", "acc_x", "acc_y", "acc_z"};
 
-class CsvFiles : public ::testing::Test {
+class CsvFiles : public TempCsvFiles {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("headingd-csv-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string writePlain(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / name;
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    EXPECT_TRUE(out) << path;
-    return path.string();
-  }
-
-  std::string writeGzip(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / name;
-    gzFile file = gzopen(path.c_str(), "wb");
-    EXPECT_NE(file, nullptr) << path;
-    if (file == nullptr) return path.string();
-    if (!text.empty()) {
-      EXPECT_EQ(gzwrite(file, text.data(), static_cast<unsigned>(text.size())), static_cast<int>(text.size()));
-    }
-    EXPECT_EQ(gzclose(file), Z_OK);
-    return path.string();
-  }
-
   // The CsvError message of reading `path` as IMU CSV, or "" if it read.
   static std::string imuErrorOf(const std::string& path) {
     try {
@@ -60,8 +29,6 @@ class CsvFiles : public ::testing::Test {
     }
     return "";
   }
-
-  fs::path dir_;
 };
 
 // The message names the file, the line ("path:LINE") and the column.

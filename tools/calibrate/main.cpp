@@ -190,6 +190,9 @@ int main(int argc, char** argv) {
   try {
     if (!fieldFromArguments(a, field)) return kBadArguments;
     progress("reading %s", a.imu_csv.c_str());
+    // All rows in memory: the fit takes a window [first, end) and every method goes over it
+    // more than once. readImuCsv parses in place (files::ImuCsvReader), so only the samples
+    // themselves are held.
     all = files::readImuCsv(a.imu_csv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-calibrate: %s\n", e.what());

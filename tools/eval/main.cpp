@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "headingd/core/orientation_error.hpp"
+#include "headingd/files/csv_row_reader.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
 int main(int argc, char** argv) {
@@ -19,19 +20,28 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    const auto est = files::readNumericCsv(estimates_path, {"qw", "qx", "qy", "qz"});
-    const auto ref = files::readNumericCsv(reference_path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
-    if (est.rows != ref.rows) {
-      throw files::CsvError("estimates have " + std::to_string(est.rows) + " rows, reference " +
-                             std::to_string(ref.rows) + ": rows are paired by index, so they must match");
-    }
+    // Both files row by row, in step (rows are paired by index): memory stays flat whatever
+    // their length.
+    files::CsvRowReader est(estimates_path, {"qw", "qx", "qy", "qz"});
+    files::CsvRowReader ref(reference_path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
+    double e[4], r[5];
     core::RmseAccumulator rmse;
     std::size_t failures = 0;  // scored rows without a usable estimate count as 180° errors
-    for (std::size_t i = 0; i < ref.rows; ++i) {
-      const core::Quat q_ref(ref.column("ref_w")[i], ref.column("ref_x")[i], ref.column("ref_y")[i],
-                             ref.column("ref_z")[i]);
-      if (ref.column("moving")[i] != 1.0 || !q_ref.coeffs().allFinite()) continue;
-      const core::Quat q_est(est.column("qw")[i], est.column("qx")[i], est.column("qy")[i], est.column("qz")[i]);
+    while (true) {
+      const bool have_est = est.next(e);
+      const bool have_ref = ref.next(r);
+      if (have_est != have_ref) {  // one ran out first: count the other's rows for the message
+        while (est.next(e)) {
+        }
+        while (ref.next(r)) {
+        }
+        throw files::CsvError("estimates have " + std::to_string(est.rows()) + " rows, reference " +
+                              std::to_string(ref.rows()) + ": rows are paired by index, so they must match");
+      }
+      if (!have_est) break;
+      const core::Quat q_ref(r[0], r[1], r[2], r[3]);
+      if (r[4] != 1.0 || !q_ref.coeffs().allFinite()) continue;
+      const core::Quat q_est(e[0], e[1], e[2], e[3]);
       if (!q_est.coeffs().allFinite() || q_est.norm() < 1e-6) {
         ++failures;
         rmse.add({std::numbers::pi, std::numbers::pi, std::numbers::pi});
@@ -39,12 +49,12 @@ int main(int argc, char** argv) {
       }
       rmse.add(core::orientationError(q_est, q_ref));
     }
-    const auto r = rmse.rmse();
+    const auto result = rmse.rmse();
     constexpr double kDeg = 180.0 / std::numbers::pi;
     std::printf(
         "{\"total_rmse_deg\":%.4f,\"heading_rmse_deg\":%.4f,\"inclination_rmse_deg\":%.4f,\"samples\":%zu,"
         "\"failed_samples\":%zu}\n",
-        r.total_rad * kDeg, r.heading_rad * kDeg, r.inclination_rad * kDeg, rmse.count(), failures);
+        result.total_rad * kDeg, result.heading_rad * kDeg, result.inclination_rad * kDeg, rmse.count(), failures);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-eval: %s\n", e.what());
     return 1;

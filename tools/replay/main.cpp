@@ -1,24 +1,21 @@
 // headingd-replay: runs the estimator over a recorded IMU CSV as fast as the CPU allows and
-// writes one estimate per input row.
+// writes one estimate per input row. Reads, estimates and writes row by row
+// (headingd/replay/replay_loop.hpp), so memory stays flat whatever the input's length.
 #include <CLI/CLI.hpp>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iostream>
-#include <numbers>
 #include <optional>
-#include <sstream>
 
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
-#include "headingd/core/imu_then_gps_order.hpp"
 #include "headingd/core/mag_calibration_fit.hpp"
-#include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/core/params_toml.hpp"
-#include "headingd/files/imu_csv.hpp"
+#include "headingd/core/wmm_coefficients.hpp"
+#include "headingd/files/imu_csv_reader.hpp"
 #include "headingd/files/nmea_epochs.hpp"
 #include "headingd/files/numeric_csv.hpp"
+#include "headingd/replay/replay_csv_writer.hpp"
+#include "headingd/replay/replay_loop.hpp"
+#include "headingd/replay/replay_report.hpp"
 #include "src/recording_replay.hpp"
 
 namespace {
@@ -30,19 +27,15 @@ core::EstimatorParams loadParams(const std::string& path) {
   return core::parseEstimatorParams(files::readMaybeGzipFile(path), path);
 }
 
-// One JSON line: the row count, the estimator's counters, the time per sample.
-void printCounters(const core::EstimatorCounters& c, std::size_t rows, double seconds) {
-  std::fprintf(stderr, "{\"rows\":%zu", rows);
-  core::forEachCounter(c, [](const char* name, std::uint64_t v) {
-    std::fprintf(stderr, ",\"%s\":%llu", name, static_cast<unsigned long long>(v));
-  });
-  std::fprintf(stderr, ",\"estimator_ns_per_sample\":%.1f}\n", rows ? seconds * 1e9 / rows : 0.0);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Replay an IMU CSV (BROAD format, plain or gzip) through the headingd estimator."};
+  CLI::App app{
+      "Replay an IMU CSV (BROAD format, plain or gzip) through the headingd estimator, row by row. "
+      "On stderr: a JSON line with the row count, the estimator's counters and estimator_ns_per_sample "
+      "(time in the estimator alone, reading and writing not in it: measured on every 16th row and on "
+      "every GPS epoch). A malformed "
+      "row stops the replay with exit status 1; the rows before it stay written."};
   std::string imu_csv, config, out;
   headingd::replay::RecordingReplayOptions recording;
   auto* imu_option =
@@ -84,81 +77,37 @@ int main(int argc, char** argv) {
     }
     if (imu_csv.empty() || out.empty()) throw std::runtime_error("--imu-csv and --out are required (or --recording)");
     const core::EstimatorParams params = loadParams(config);
-    auto samples = files::readImuCsv(imu_csv);
+    files::ImuCsvReader imu(imu_csv);
+    const bool calibrated = !calib_path.empty();
     core::CalibratedImuStream calibration;
-    if (!calib_path.empty()) {
+    if (calibrated) {
       calibration = core::CalibratedImuStream(
           core::parseImuCalibration(files::readMaybeGzipFile(calib_path), calib_path));
-      for (auto& s : samples) s = calibration.apply(s);
     }
     const bool with_gps = !nmea_path.empty();
-    files::NmeaEpochs gps;
+    files::NmeaEpochs gps;  // 1 Hz: small enough to read whole
     std::optional<core::WorldMagneticModel> wmm;
     if (with_gps) {
       gps = files::readNmeaEpochs(nmea_path, nmea_first_epoch_t);
       wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(wmm_path), wmm_path));
     }
     core::HeadingPipeline pipeline(params, wmm ? &*wmm : nullptr);
-
-    // Estimates are kept in memory and written afterwards, so the timing below is the
-    // estimator's alone. Each GPS epoch goes in after the first IMU sample at or after its time.
-    std::vector<core::HeadingOutput> estimates(samples.size());
-    core::ImuThenGpsOrder<core::GpsObservation> order;
+    replay::GpsOrder order;
     order.reserve(gps.epochs.size());
     for (const core::GpsObservation& epoch : gps.epochs) order.pushGps(epoch);
-    const auto processGps = [&pipeline](const core::GpsObservation& epoch) { pipeline.processGps(epoch); };
-    const auto start = std::chrono::steady_clock::now();
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-      pipeline.process(samples[i]);
-      order.afterImu(samples[i].t_ns, processGps);
-      estimates[i] = pipeline.output();  // a rejected sample repeats the last estimate
-    }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    std::FILE* f = std::fopen(out.c_str(), "w");
-    if (f == nullptr) throw std::runtime_error(out + ": cannot open for writing");
-    std::fputs(with_gps ? "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_mag_deg,declination_deg,"
-                          "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed\n"
-                        : "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg\n",
-               f);
-    constexpr double kDeg = 180.0 / std::numbers::pi;
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-      const auto& h = estimates[i];
-      const auto& e = h.attitude;
-      const double t = static_cast<double>(samples[i].t_ns) * 1e-9;
-      if (!e.valid) {  // nothing usable yet: say so rather than invent an attitude
-        std::fprintf(f, with_gps ? "%.9g,nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,none,nan,nan,0\n"
-                                 : "%.9g,nan,nan,nan,nan,nan,nan,nan\n",
-                     t);
-        continue;
-      }
-      const core::EulerAngles euler = core::eulerZyx(e.q_nb);
-      std::fprintf(f, "%.9g,%.9f,%.9f,%.9f,%.9f,%.6f,%.6f,%.6f", t, e.q_nb.w(), e.q_nb.x(), e.q_nb.y(), e.q_nb.z(),
-                   euler.roll_rad * kDeg, euler.pitch_rad * kDeg, euler.yaw_rad * kDeg);
-      if (with_gps) {
-        std::fprintf(f, ",%.6f,%.6f,%.6f,%s,%.6f,%.6f,%d", h.heading_mag_rad * kDeg, h.declination_rad * kDeg,
-                     h.declination_sigma_rad * kDeg, core::declinationSourceName(h.declination_sources),
-                     h.mount_yaw_rad * kDeg, h.heading_true_rad * kDeg, e.mag_disturbed ? 1 : 0);
-      }
-      std::fputc('\n', f);
-    }
-    if (std::fclose(f) != 0) throw std::runtime_error(out + ": write failed");
-    printCounters(pipeline.estimator().counters(), samples.size(), seconds);
-    if (!calib_path.empty()) {
-      const auto& fit = calibration.magFit();
-      std::fprintf(stderr, "{\"mag_calibration_set_aside\":%llu,\"mag_calibration_taken_back\":%llu,"
-                   "\"mag_calibration_in_use_at_end\":%s}\n",
-                   static_cast<unsigned long long>(fit.setAside()), static_cast<unsigned long long>(fit.takenBack()),
-                   fit.calibrationInUse() ? "true" : "false");
-    }
-    if (with_gps) {
-      std::fprintf(stderr, "{\"gps_epochs\":%zu,\"gps_epochs_used_for_declination\":%llu", gps.epochs.size(),
-                   static_cast<unsigned long long>(pipeline.gpsEpochsUsedForDeclination()));
-      nmea::forEachCounter(gps.counters, [](const char* name, std::uint64_t v) {
-        std::fprintf(stderr, ",\"nmea_%s\":%llu", name, static_cast<unsigned long long>(v));
-      });
-      std::fputs("}\n", stderr);
-    }
+    replay::ReplayCsvWriter writer(out, with_gps);
+    const auto nextSample = [&](core::ImuSample* sample) {
+      if (!imu.next(sample)) return false;
+      if (calibrated) *sample = calibration.apply(*sample);
+      return true;
+    };
+    const replay::ReplayTotals totals = replay::replaySamples(nextSample, pipeline, order, writer);
+    writer.close();
+
+    replay::printCounters(pipeline.estimator().counters(), totals);
+    if (calibrated) replay::printMagCalibration(calibration.magFit());
+    if (with_gps) replay::printGps(gps, pipeline);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-replay: %s\n", e.what());
     return 1;

@@ -19,6 +19,7 @@ packages=(
   libgeographiclib-dev # World Magnetic Model, geodesy
   libceres-dev         # maximum-likelihood calibration (automatic differentiation)
   gzip                 # the demo recording and BROAD trials are gzip'd
+  time                 # /usr/bin/time: peak RSS in tools/scripts/bench-replay.sh
   liblcm-dev           # LCM messages (daemon)
   liblcm-bin           # lcm-gen, lcm-logger
   liblcm-java          # lcm.jar for lcm-spy and the Java message classes

@@ -17,7 +17,8 @@
 #include "headingd/files/numeric_csv.hpp"
 #include "headingd/recording/recording_format.hpp"
 #include "headingd/recording/recording_reader.hpp"
-#include "replay_rows.hpp"
+#include "headingd/replay/replay_csv_writer.hpp"
+#include "headingd/replay/replay_report.hpp"
 
 namespace headingd::replay {
 namespace {
@@ -107,8 +108,8 @@ int replayRecording(const RecordingReplayOptions& options) {
   core::HeadingPipeline pipeline(setup.estimator, wmm ? &*wmm : nullptr);
   recording::RecordingReader reader(setup);
 
-  std::unique_ptr<RowWriter> rows;
-  if (!options.out_csv.empty()) rows = std::make_unique<RowWriter>(options.out_csv, /*with_gps=*/true);
+  std::unique_ptr<ReplayCsvWriter> rows;
+  if (!options.out_csv.empty()) rows = std::make_unique<ReplayCsvWriter>(options.out_csv, /*with_gps=*/true);
   std::unique_ptr<EstimateLog> estimates;
   if (!options.lcm_log.empty()) estimates = std::make_unique<EstimateLog>(options.lcm_log, channelsOf(setup.folder));
 
@@ -140,9 +141,11 @@ int replayRecording(const RecordingReplayOptions& options) {
     if (estimates) estimates->write(pipeline, last_used_t_ns);
   }
   if (rows && row_pending_t_ns) rows->write(*row_pending_t_ns, pipeline.output());
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Here the time is the whole loop's, reading and writing included.
+  const ReplayTotals totals{samples, std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                         std::chrono::steady_clock::now() - start)};
   if (rows) rows->close();
-  printCounters(pipeline.estimator().counters(), samples, seconds);
+  printCounters(pipeline.estimator().counters(), totals);
   printRecordingCounters(reader);
   return 0;
 }

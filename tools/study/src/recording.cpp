@@ -16,6 +16,8 @@ Recording readBroadTrial(const std::string& path) {
   Recording r;
   r.name = std::filesystem::path(path).filename().string();
   if (r.name.ends_with(".csv.gz")) r.name.resize(r.name.size() - 7);
+  // All rows in memory: a study replays each trial under many estimator settings. Both
+  // readers parse in place (files::CsvRowReader); only the values asked for are held.
   r.samples = files::readImuCsv(path);
   const auto ref = files::readNumericCsv(path, {"ref_w", "ref_x", "ref_y", "ref_z", "moving"});
   const double nan = std::numeric_limits<double>::quiet_NaN();

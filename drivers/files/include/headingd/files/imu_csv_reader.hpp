@@ -1,0 +1,32 @@
+#pragma once
+// IMU recordings in the BROAD CSV format (see imu_csv.hpp), one sample at a time: memory
+// stays flat whatever the recording's length. Same rows, values and errors as readImuCsv.
+#include <array>
+#include <string>
+
+#include "headingd/core/imu_sample.hpp"
+#include "headingd/files/csv_row_reader.hpp"
+
+namespace headingd::files {
+
+class ImuCsvReader {
+ public:
+  // Opens the file and reads its header; throws CsvError (file, line 1, column) when a
+  // required column is missing.
+  explicit ImuCsvReader(const std::string& path);
+
+  // The next sample in file order; false at the end of the file. Without all three mag_*
+  // columns every sample has has_mag = false. Throws CsvError naming file, line and column
+  // for a malformed row or a time that is not finite.
+  bool next(core::ImuSample* sample);
+  bool hasMag() const { return has_mag_; }
+  std::size_t rows() const { return csv_.rows(); }
+  const std::string& path() const { return csv_.path(); }
+
+ private:
+  CsvRowReader csv_;
+  bool has_mag_ = false;
+  std::array<double, 10> row_{};  // t, gyr_x..z, acc_x..z, then mag_x..z if present
+};
+
+}  // namespace headingd::files

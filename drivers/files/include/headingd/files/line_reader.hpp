@@ -1,0 +1,41 @@
+#pragma once
+// Reads a text file (plain or gzip: zlib reads both) one line at a time through a fixed
+// buffer, so memory stays flat whatever the file's length. A line is handed out as a view
+// into the buffer, valid until the next call; no copy, no allocation per line.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+
+namespace headingd::files {
+
+class LineReader {
+ public:
+  // Throws CsvError "PATH: cannot open: REASON".
+  explicit LineReader(std::string path);
+  ~LineReader();
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
+
+  // The next line without its '\n' (a '\r' before it stays); a last line without '\n' is a
+  // line too. False at the end of the file. Throws CsvError "PATH: read error: ..." when
+  // zlib cannot read on (e.g. a truncated gzip stream).
+  bool next(std::string_view* line);
+  // 1-based number of the line last handed out (0 before the first).
+  std::size_t lineNumber() const { return line_number_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  bool refill();  // false when the file has no more bytes
+
+  std::string path_;
+  void* file_ = nullptr;    // gzFile (kept out of this header so users need not include zlib)
+  std::unique_ptr<char[]> buffer_;  // not zeroed: every byte used is read first
+  std::size_t capacity_ = 0;
+  std::size_t begin_ = 0;   // first byte not handed out yet
+  std::size_t end_ = 0;     // one past the last byte read
+  bool at_eof_ = false;
+  std::size_t line_number_ = 0;
+};
+
+}  // namespace headingd::files

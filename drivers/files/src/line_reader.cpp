@@ -1,0 +1,81 @@
+#include "headingd/files/line_reader.hpp"
+
+#include <zlib.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <memory>
+
+#include "headingd/files/numeric_csv.hpp"
+
+namespace headingd::files {
+namespace {
+
+// Large reads: zlib copies a plain file straight into our buffer when a read is at least
+// its own buffer's size, and a gzip stream inflates in fewer, longer calls.
+constexpr std::size_t kBufferBytes = 1 << 18;
+constexpr unsigned kZlibBufferBytes = 1 << 17;
+
+}  // namespace
+
+LineReader::LineReader(std::string path)
+    : path_(std::move(path)), buffer_(std::make_unique_for_overwrite<char[]>(kBufferBytes)), capacity_(kBufferBytes) {
+  gzFile file = gzopen(path_.c_str(), "rb");
+  if (file == nullptr) throw CsvError(path_ + ": cannot open: " + std::strerror(errno));
+  gzbuffer(file, kZlibBufferBytes);
+  file_ = file;
+}
+
+LineReader::~LineReader() { gzclose(static_cast<gzFile>(file_)); }
+
+bool LineReader::refill() {
+  if (at_eof_) return false;
+  if (begin_ > 0) {  // keep the unfinished line, at the front
+    std::memmove(buffer_.get(), buffer_.get() + begin_, end_ - begin_);
+    end_ -= begin_;
+    begin_ = 0;
+  }
+  if (end_ == capacity_) {  // a line longer than the buffer
+    auto larger = std::make_unique_for_overwrite<char[]>(capacity_ * 2);
+    std::memcpy(larger.get(), buffer_.get(), end_);
+    buffer_ = std::move(larger);
+    capacity_ *= 2;
+  }
+  const std::size_t room = std::min<std::size_t>(capacity_ - end_, INT_MAX);
+  const int n = gzread(static_cast<gzFile>(file_), buffer_.get() + end_, static_cast<unsigned>(room));
+  if (n < 0) {
+    int code = 0;
+    throw CsvError(path_ + ": read error: " + gzerror(static_cast<gzFile>(file_), &code));
+  }
+  if (n == 0) {
+    at_eof_ = true;
+    return false;
+  }
+  end_ += static_cast<std::size_t>(n);
+  return true;
+}
+
+bool LineReader::next(std::string_view* line) {
+  std::size_t searched = begin_;  // bytes before this hold no '\n'
+  while (true) {
+    const void* nl = std::memchr(buffer_.get() + searched, '\n', end_ - searched);
+    if (nl != nullptr) {
+      const std::size_t at = static_cast<std::size_t>(static_cast<const char*>(nl) - buffer_.get());
+      *line = std::string_view(buffer_.get() + begin_, at - begin_);
+      begin_ = at + 1;
+      ++line_number_;
+      return true;
+    }
+    const std::size_t searched_bytes = end_ - begin_;
+    if (!refill()) break;
+    searched = begin_ + searched_bytes;
+  }
+  if (begin_ == end_) return false;
+  *line = std::string_view(buffer_.get() + begin_, end_ - begin_);  // the last line has no '\n'
+  begin_ = end_;
+  ++line_number_;
+  return true;
+}
+
+}  // namespace headingd::files
