@@ -14,7 +14,7 @@ RecorderStream::RecorderStream(std::string name, std::size_t ring_lines) : ring_
 
 bool RecorderStream::write(std::string_view line) noexcept {
   if (!accepting_.load(std::memory_order_acquire)) return false;
-  if (line.size() > kMaxLineBytes || std::memchr(line.data(), '\n', line.size()) != nullptr) {
+  if (line.size() > kMaxLineBytes || (!line.empty() && std::memchr(line.data(), '\n', line.size()) != nullptr)) {
     refused_.store(refused_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
     ++lost_since_last_push_;
     return false;
@@ -22,7 +22,7 @@ bool RecorderStream::write(std::string_view line) noexcept {
   RecorderLine entry;
   entry.lost_before = lost_since_last_push_;
   entry.length = static_cast<std::uint16_t>(line.size());
-  std::memcpy(entry.text, line.data(), line.size());
+  if (!line.empty()) std::memcpy(entry.text, line.data(), line.size());
   if (!ring_.push(entry)) {  // counted by the ring
     ++lost_since_last_push_;
     return false;

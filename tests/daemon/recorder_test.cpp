@@ -10,6 +10,8 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <pthread.h>
+#include <sched.h>
 #include <memory>
 #include <regex>
 #include <spdlog/sinks/ostream_sink.h>
@@ -513,6 +515,41 @@ TEST(Recorder, WhenOffStartSaysWhyOnceAndNothingIsWritten) {
   recorder.stop();
   EXPECT_TRUE(fs::is_empty(dir.path()));
   EXPECT_EQ(log.count("recorder: off: because the test says so"), 1) << log.text();
+}
+
+// The thread that starts the recorder may be real-time (the estimator's may be SCHED_FIFO);
+// the writer, which can block in the disk, must not be.
+TEST(Recorder, TheWriterThreadRunsAtNormalSchedulingWhenStartedFromARealTimeThread) {
+  TempDir dir;
+  Recorder recorder(configFor(dir.path()), {"can"});
+  int start_error = 0;
+  bool started_at_fifo = false;
+  std::thread starter([&] {
+    sched_param fifo{};
+    fifo.sched_priority = 1;
+    start_error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &fifo);
+    if (start_error != 0) return;
+    int policy = 0;
+    sched_param now{};
+    started_at_fifo = pthread_getschedparam(pthread_self(), &policy, &now) == 0 && policy == SCHED_FIFO;
+    recorder.start({});
+  });
+  starter.join();
+  if (start_error != 0) GTEST_SKIP() << "SCHED_FIFO refused here: " << std::strerror(start_error);
+  ASSERT_TRUE(started_at_fifo);
+  // The writer thread names itself "recorder".
+  int writer_policy = -1;
+  ASSERT_TRUE(waitUntil([&] {
+    for (const auto& task : fs::directory_iterator("/proc/self/task")) {
+      if (readFile(task.path().string() + "/comm") == "recorder\n") {
+        writer_policy = sched_getscheduler(std::stoi(task.path().filename().string()));
+        return true;
+      }
+    }
+    return false;
+  }, 10s));
+  EXPECT_EQ(writer_policy, SCHED_OTHER);
+  recorder.stop();
 }
 
 TEST(RecorderNames, SegmentsAndFolderOrder) {
