@@ -1,0 +1,285 @@
+#pragma once
+// Real LCM log files written by LCM's own writer (lcm::LogFile), the exporter run as a
+// program, and headingd messages with a distinct, awkward value in every field.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <lcm/lcm-cpp.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "headingd/attitude_t.hpp"
+#include "headingd/gps_t.hpp"
+#include "headingd/heading_t.hpp"
+#include "headingd/imu_t.hpp"
+#include "headingd/status_t.hpp"
+
+namespace headingd::lcm_export::test {
+
+struct LoggedEvent {
+  std::string channel;
+  std::vector<std::uint8_t> data;
+  std::int64_t utime = 0;
+};
+
+template <class Message>
+LoggedEvent eventOf(const std::string& channel, const Message& message, std::int64_t utime) {
+  LoggedEvent e{channel, std::vector<std::uint8_t>(static_cast<std::size_t>(message.getEncodedSize())), utime};
+  message.encode(e.data.data(), 0, static_cast<int>(e.data.size()));
+  return e;
+}
+
+// Writes the events with LCM's log writer; returns each event's byte offset in the file
+// (28-byte header, channel, data: LCM's eventlog format), and the file's size last.
+inline std::vector<std::uint64_t> writeLcmLog(const std::filesystem::path& path, const std::vector<LoggedEvent>& events) {
+  std::vector<std::uint64_t> offsets;
+  std::uint64_t offset = 0;
+  {
+    lcm::LogFile log(path.string(), "w");
+    if (!log.good()) throw std::runtime_error(path.string() + ": cannot write");
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      lcm::LogEvent event;
+      event.eventnum = static_cast<std::int64_t>(i);
+      event.timestamp = events[i].utime;
+      event.channel = events[i].channel;
+      event.datalen = static_cast<std::int32_t>(events[i].data.size());
+      event.data = const_cast<std::uint8_t*>(events[i].data.data());
+      if (log.writeEvent(&event) != 0) throw std::runtime_error(path.string() + ": write failed");
+      offsets.push_back(offset);
+      offset += 28 + events[i].channel.size() + events[i].data.size();
+    }
+  }
+  offsets.push_back(offset);
+  EXPECT_EQ(std::filesystem::file_size(path), offset);
+  return offsets;
+}
+
+struct RunResult {
+  int status = -1;
+  std::string out, err;
+};
+
+inline std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline RunResult runExporter(const std::filesystem::path& work, const std::string& arguments) {
+  const std::string command = std::string(HEADINGD_LCM_EXPORT_BIN) + " " + arguments + " >" +
+                              (work / "stdout").string() + " 2>" + (work / "stderr").string();
+  const int raw = std::system(command.c_str());
+  RunResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = readText(work / "stdout");
+  r.err = readText(work / "stderr");
+  return r;
+}
+
+// A fresh folder per test, removed at the end.
+class TempDir {
+ public:
+  TempDir() {
+    char pattern[] = "/tmp/headingd-lcm-export-XXXXXX";
+    if (mkdtemp(pattern) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Values that are hard to write and read back: extremes, -0, subnormals, NaN and infinities,
+// text with separators, quotes, line breaks and non-ASCII bytes; between them values that
+// differ from call to call, so that two fields swapped would show.
+class AwkwardValues {
+ public:
+  explicit AwkwardValues(unsigned seed) : n_(seed) {}
+  double real() {
+    static const double pool[] = {0.1, -0.0, 5e-324, 1.7976931348623157e308, std::numeric_limits<double>::quiet_NaN(),
+                                  std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                                  1.0 / 3.0, 2.2250738585072014e-308};
+    const unsigned k = n_++;
+    return k % 3 == 0 ? pool[(k / 3) % std::size(pool)] : -2.718281828459045 * k + 1e-3;
+  }
+  std::int64_t i64() {
+    static const std::int64_t pool[] = {std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max(), 0};
+    const unsigned k = n_++;
+    return k % 3 == 0 ? pool[(k / 3) % std::size(pool)] : 1000000007LL * k - 3;
+  }
+  std::int32_t i32() {
+    static const std::int32_t pool[] = {std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max()};
+    const unsigned k = n_++;
+    return k % 3 == 0 ? pool[(k / 3) % std::size(pool)] : static_cast<std::int32_t>(1009 * k) - 5;
+  }
+  std::int8_t i8() {
+    static const std::int8_t pool[] = {-128, 127, 0, 2, 5};
+    return pool[n_++ % std::size(pool)];
+  }
+  std::int8_t flag() { return static_cast<std::int8_t>(n_++ % 2); }
+  std::string text() {
+    static const char* pool[] = {"with,comma", "say \"hi\"", "two\nlines", "", " spaced ", "gr\xC3\xBC\xC3\x9F", "cr\rlf\r\n"};
+    const unsigned k = n_++;
+    return k % 2 == 0 ? std::string(pool[(k / 2) % std::size(pool)]) : "text " + std::to_string(k);
+  }
+
+ private:
+  unsigned n_;
+};
+
+inline headingd::heading_t awkwardHeading(AwkwardValues& v) {
+  headingd::heading_t m;
+  m.utime = v.i64();
+  m.sample_utime = v.i64();
+  m.sample_age_us = v.i64();
+  m.validity = v.i8();
+  m.heading_true_rad = v.real();
+  m.heading_mag_rad = v.real();
+  m.declination_rad = v.real();
+  m.declination_sigma_rad = v.real();
+  m.declination_sources = v.i32();
+  m.declination_source = v.text();
+  m.mount_yaw_rad = v.real();
+  m.mount_yaw_sigma_rad = v.real();
+  m.mag_disturbed = v.flag();
+  m.mag_norm_jump = v.flag();
+  m.mag_dip_jump = v.flag();
+  m.mag_norm_reference = v.flag();
+  m.mag_dip_reference = v.flag();
+  m.mag_used = v.flag();
+  m.mag_gain = v.real();
+  m.mag_innovation_rad = v.real();
+  m.heading_redefined = v.flag();
+  return m;
+}
+
+inline headingd::attitude_t awkwardAttitude(AwkwardValues& v) {
+  headingd::attitude_t m;
+  m.utime = v.i64();
+  m.sample_utime = v.i64();
+  m.sample_age_us = v.i64();
+  m.validity = v.i8();
+  for (double& q : m.q_nb) q = v.real();
+  m.roll_rad = v.real();
+  m.pitch_rad = v.real();
+  m.yaw_rad = v.real();
+  for (auto& covariance_row : m.q_covariance) {
+    for (double& c : covariance_row) c = v.real();
+  }
+  m.motion_level = v.i8();
+  m.motion_level_name = v.text();
+  m.accel_disturbance = v.real();
+  m.at_rest = v.flag();
+  for (double& b : m.gyro_bias_rad_s) b = v.real();
+  m.head_height = v.real();
+  return m;
+}
+
+inline headingd::imu_t awkwardImu(AwkwardValues& v) {
+  headingd::imu_t m;
+  m.utime = v.i64();
+  m.sample_utime = v.i64();
+  m.source = v.text();
+  for (double& g : m.gyro_rad_s) g = v.real();
+  for (double& a : m.accel_m_s2) a = v.real();
+  m.has_mag = v.flag();
+  for (double& b : m.mag_uT) b = v.real();
+  m.verdict = v.i8();
+  m.verdict_name = v.text();
+  return m;
+}
+
+inline headingd::gps_t awkwardGps(AwkwardValues& v) {
+  headingd::gps_t m;
+  m.utime = v.i64();
+  m.sample_utime = v.i64();
+  m.source = v.text();
+  m.fix_ok = v.flag();
+  m.has_position = v.flag();
+  m.latitude_deg = v.real();
+  m.longitude_deg = v.real();
+  m.height_m = v.real();
+  m.has_course = v.flag();
+  m.course_rad = v.real();
+  m.has_speed = v.flag();
+  m.speed_mps = v.real();
+  m.has_hdop = v.flag();
+  m.hdop = v.real();
+  m.has_magvar = v.flag();
+  m.magvar_rad = v.real();
+  m.decimal_year = v.real();
+  return m;
+}
+
+inline headingd::counter_t counter(const std::string& name, std::int64_t value) {
+  headingd::counter_t c;
+  c.name = name;
+  c.value = value;
+  return c;
+}
+
+// `sources` names; each source gets `counters_per_source` counters. Estimator counters:
+// named ones, plus a repeated and an empty name (keyed by index in the table).
+inline headingd::status_t awkwardStatus(AwkwardValues& v, const std::vector<std::string>& sources,
+                                        int counters_per_source, bool odd_counters) {
+  headingd::status_t m;
+  m.utime = v.i64();
+  m.state = v.text();
+  m.reason = v.text();
+  m.uptime_us = v.i64();
+  for (const std::string& name : sources) {
+    headingd::source_status_t s;
+    s.name = name;
+    s.kind = v.text();
+    s.state = v.text();
+    s.last_error = v.text();
+    for (int c = 0; c < counters_per_source; ++c) s.counters.push_back(counter("frames_" + std::to_string(c), v.i64()));
+    s.num_counters = static_cast<std::int32_t>(s.counters.size());
+    m.sources.push_back(s);
+  }
+  m.num_sources = static_cast<std::int32_t>(m.sources.size());
+  headingd::ring_status_t ring;
+  ring.name = "imu";
+  ring.capacity = v.i32();
+  ring.high_water = v.i32();
+  ring.pushed = v.i64();
+  ring.dropped = v.i64();
+  m.rings = {ring};
+  m.num_rings = 1;
+  m.rate_hz = v.real();
+  m.ticks = v.i64();
+  m.deadline_misses = v.i64();
+  m.tick_jitter_p50_us = v.real();
+  m.tick_jitter_p99_us = v.real();
+  m.tick_jitter_max_us = v.real();
+  m.processing_p50_us = v.real();
+  m.processing_p99_us = v.real();
+  m.processing_max_us = v.real();
+  m.sample_age_p50_us = v.real();
+  m.sample_age_p99_us = v.real();
+  m.heading_rate_hz = v.real();
+  m.imu_rate_hz = v.real();
+  m.gps_rate_hz = v.real();
+  m.publish_errors = v.i64();
+  m.counters = {counter("gate_gap", v.i64()), counter("weird, \"name\"", v.i64())};
+  if (odd_counters) {
+    m.counters.push_back(counter("gate_gap", v.i64()));
+    m.counters.push_back(counter("", v.i64()));
+  }
+  m.num_counters = static_cast<std::int32_t>(m.counters.size());
+  return m;
+}
+
+}  // namespace headingd::lcm_export::test
