@@ -34,10 +34,12 @@ Columns:
   counters.<counter> (a counter_t's value). A first pass over the log finds every name;
   a cell is empty where a message has no such element. An element with an empty or
   repeated name is keyed by its index instead: counters.#3.name, counters.#3.value.
+  The order of the elements within one message is not kept, their names and values are.
   Integers exact; doubles in the shortest text that reads back to the same double (nan,
   inf, -inf); booleans 0/1; text quoted as RFC 4180 says when it holds , " CR or LF.
 
-Files:
+Output:
+  stdout: one line per table: channel, type, rows, file (tab-separated).
   Each table is written as <table>.csv.tmp and renamed into place at the end: an
   interrupted run never leaves a half-written table under its final name. Tables of
   earlier exports into DIR are replaced only when this log has the same table.
@@ -51,9 +53,11 @@ Exit status:
   2  bad arguments, or a --channel that the log does not have (the others are exported)
   3  the log cannot be read or a table cannot be written (tables not in place are removed)
 
-Example:
+Example (record, export, open in pandas):
   lcm-logger --lcm-url='udpm://239.255.76.67:7667?ttl=0' run.lcm
+
   headingd-lcm-export run.lcm --out-dir run --channel HEADING,STATUS
+
   python3 -c 'import pandas; print(pandas.read_csv("run/HEADING.csv").describe())')";
 
 }  // namespace
