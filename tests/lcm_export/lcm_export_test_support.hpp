@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <lcm/lcm-cpp.hpp>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -37,7 +37,8 @@ LoggedEvent eventOf(const std::string& channel, const Message& message, std::int
 
 // Writes the events with LCM's log writer; returns each event's byte offset in the file
 // (28-byte header, channel, data: LCM's eventlog format), and the file's size last.
-inline std::vector<std::uint64_t> writeLcmLog(const std::filesystem::path& path, const std::vector<LoggedEvent>& events) {
+inline std::vector<std::uint64_t> writeLcmLog(const std::filesystem::path& path,
+                                              const std::vector<LoggedEvent>& events) {
   std::vector<std::uint64_t> offsets;
   std::uint64_t offset = 0;
   {
@@ -108,118 +109,88 @@ class AwkwardValues {
  public:
   explicit AwkwardValues(unsigned seed) : n_(seed) {}
   double real() {
-    static const double pool[] = {0.1, -0.0, 5e-324, 1.7976931348623157e308, std::numeric_limits<double>::quiet_NaN(),
-                                  std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                                  1.0 / 3.0, 2.2250738585072014e-308};
+    static const double pool[] = {0.1,
+                                  -0.0,
+                                  5e-324,
+                                  1.7976931348623157e308,
+                                  std::numeric_limits<double>::quiet_NaN(),
+                                  std::numeric_limits<double>::infinity(),
+                                  -std::numeric_limits<double>::infinity(),
+                                  1.0 / 3.0,
+                                  2.2250738585072014e-308};
     const unsigned k = n_++;
     return k % 3 == 0 ? pool[(k / 3) % std::size(pool)] : -2.718281828459045 * k + 1e-3;
   }
   std::int64_t i64() {
-    static const std::int64_t pool[] = {std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max(), 0};
+    static const std::int64_t pool[] = {std::numeric_limits<std::int64_t>::min(),
+                                        std::numeric_limits<std::int64_t>::max(), 0};
     const unsigned k = n_++;
     return k % 3 == 0 ? pool[(k / 3) % std::size(pool)] : 1000000007LL * k - 3;
   }
   std::int32_t i32() {
-    static const std::int32_t pool[] = {std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max()};
+    static const std::int32_t pool[] = {std::numeric_limits<std::int32_t>::min(),
+                                        std::numeric_limits<std::int32_t>::max()};
     const unsigned k = n_++;
     return k % 3 == 0 ? pool[(k / 3) % std::size(pool)] : static_cast<std::int32_t>(1009 * k) - 5;
   }
   std::int8_t i8() {
-    static const std::int8_t pool[] = {-128, 127, 0, 2, 5};
+    static const std::int8_t pool[] = {-128, 127, 0, 1, 2};
     return pool[n_++ % std::size(pool)];
   }
-  std::int8_t flag() { return static_cast<std::int8_t>(n_++ % 2); }
   std::string text() {
-    static const char* pool[] = {"with,comma", "say \"hi\"", "two\nlines", "", " spaced ", "gr\xC3\xBC\xC3\x9F", "cr\rlf\r\n"};
+    static const char* pool[] = {"with,comma", "say \"hi\"",         "two\nlines", "",
+                                 " spaced ",   "gr\xC3\xBC\xC3\x9F", "cr\rlf\r\n"};
     const unsigned k = n_++;
     return k % 2 == 0 ? std::string(pool[(k / 2) % std::size(pool)]) : "text " + std::to_string(k);
   }
 
+  // Each argument (a field of a message, any of LCM's C++ types) gets the next value.
+  template <class... Fields>
+  void fill(Fields&... fields) {
+    (fillOne(fields), ...);
+  }
+
  private:
+  void fillOne(double& x) { x = real(); }
+  void fillOne(std::int64_t& x) { x = i64(); }
+  void fillOne(std::int32_t& x) { x = i32(); }
+  void fillOne(std::int8_t& x) { x = i8(); }
+  void fillOne(std::string& x) { x = text(); }
+  template <class T, std::size_t N>
+  void fillOne(T (&array)[N]) {
+    for (T& x : array) fillOne(x);
+  }
   unsigned n_;
 };
 
 inline headingd::heading_t awkwardHeading(AwkwardValues& v) {
   headingd::heading_t m;
-  m.utime = v.i64();
-  m.sample_utime = v.i64();
-  m.sample_age_us = v.i64();
-  m.validity = v.i8();
-  m.heading_true_rad = v.real();
-  m.heading_mag_rad = v.real();
-  m.declination_rad = v.real();
-  m.declination_sigma_rad = v.real();
-  m.declination_sources = v.i32();
-  m.declination_source = v.text();
-  m.mount_yaw_rad = v.real();
-  m.mount_yaw_sigma_rad = v.real();
-  m.mag_disturbed = v.flag();
-  m.mag_norm_jump = v.flag();
-  m.mag_dip_jump = v.flag();
-  m.mag_norm_reference = v.flag();
-  m.mag_dip_reference = v.flag();
-  m.mag_used = v.flag();
-  m.mag_gain = v.real();
-  m.mag_innovation_rad = v.real();
-  m.heading_redefined = v.flag();
+  v.fill(m.utime, m.sample_utime, m.sample_age_us, m.validity, m.heading_true_rad, m.heading_mag_rad, m.declination_rad,
+         m.declination_sigma_rad, m.declination_sources, m.declination_source, m.mount_yaw_rad, m.mount_yaw_sigma_rad,
+         m.mag_disturbed, m.mag_norm_jump, m.mag_dip_jump, m.mag_norm_reference, m.mag_dip_reference, m.mag_used,
+         m.mag_gain, m.mag_innovation_rad, m.heading_redefined);
   return m;
 }
 
 inline headingd::attitude_t awkwardAttitude(AwkwardValues& v) {
   headingd::attitude_t m;
-  m.utime = v.i64();
-  m.sample_utime = v.i64();
-  m.sample_age_us = v.i64();
-  m.validity = v.i8();
-  for (double& q : m.q_nb) q = v.real();
-  m.roll_rad = v.real();
-  m.pitch_rad = v.real();
-  m.yaw_rad = v.real();
-  for (auto& covariance_row : m.q_covariance) {
-    for (double& c : covariance_row) c = v.real();
-  }
-  m.motion_level = v.i8();
-  m.motion_level_name = v.text();
-  m.accel_disturbance = v.real();
-  m.at_rest = v.flag();
-  for (double& b : m.gyro_bias_rad_s) b = v.real();
-  m.head_height = v.real();
+  v.fill(m.utime, m.sample_utime, m.sample_age_us, m.validity, m.q_nb, m.roll_rad, m.pitch_rad, m.yaw_rad,
+         m.q_covariance, m.motion_level, m.motion_level_name, m.accel_disturbance, m.at_rest, m.gyro_bias_rad_s,
+         m.head_height);
   return m;
 }
 
 inline headingd::imu_t awkwardImu(AwkwardValues& v) {
   headingd::imu_t m;
-  m.utime = v.i64();
-  m.sample_utime = v.i64();
-  m.source = v.text();
-  for (double& g : m.gyro_rad_s) g = v.real();
-  for (double& a : m.accel_m_s2) a = v.real();
-  m.has_mag = v.flag();
-  for (double& b : m.mag_uT) b = v.real();
-  m.verdict = v.i8();
-  m.verdict_name = v.text();
+  v.fill(m.utime, m.sample_utime, m.source, m.gyro_rad_s, m.accel_m_s2, m.has_mag, m.mag_uT, m.verdict, m.verdict_name);
   return m;
 }
 
 inline headingd::gps_t awkwardGps(AwkwardValues& v) {
   headingd::gps_t m;
-  m.utime = v.i64();
-  m.sample_utime = v.i64();
-  m.source = v.text();
-  m.fix_ok = v.flag();
-  m.has_position = v.flag();
-  m.latitude_deg = v.real();
-  m.longitude_deg = v.real();
-  m.height_m = v.real();
-  m.has_course = v.flag();
-  m.course_rad = v.real();
-  m.has_speed = v.flag();
-  m.speed_mps = v.real();
-  m.has_hdop = v.flag();
-  m.hdop = v.real();
-  m.has_magvar = v.flag();
-  m.magvar_rad = v.real();
-  m.decimal_year = v.real();
+  v.fill(m.utime, m.sample_utime, m.source, m.fix_ok, m.has_position, m.latitude_deg, m.longitude_deg, m.height_m,
+         m.has_course, m.course_rad, m.has_speed, m.speed_mps, m.has_hdop, m.hdop, m.has_magvar, m.magvar_rad,
+         m.decimal_year);
   return m;
 }
 
@@ -235,16 +206,11 @@ inline headingd::counter_t counter(const std::string& name, std::int64_t value) 
 inline headingd::status_t awkwardStatus(AwkwardValues& v, const std::vector<std::string>& sources,
                                         int counters_per_source, bool odd_counters) {
   headingd::status_t m;
-  m.utime = v.i64();
-  m.state = v.text();
-  m.reason = v.text();
-  m.uptime_us = v.i64();
+  v.fill(m.utime, m.state, m.reason, m.uptime_us);
   for (const std::string& name : sources) {
     headingd::source_status_t s;
     s.name = name;
-    s.kind = v.text();
-    s.state = v.text();
-    s.last_error = v.text();
+    v.fill(s.kind, s.state, s.last_error);
     for (int c = 0; c < counters_per_source; ++c) s.counters.push_back(counter("frames_" + std::to_string(c), v.i64()));
     s.num_counters = static_cast<std::int32_t>(s.counters.size());
     m.sources.push_back(s);
@@ -252,27 +218,12 @@ inline headingd::status_t awkwardStatus(AwkwardValues& v, const std::vector<std:
   m.num_sources = static_cast<std::int32_t>(m.sources.size());
   headingd::ring_status_t ring;
   ring.name = "imu";
-  ring.capacity = v.i32();
-  ring.high_water = v.i32();
-  ring.pushed = v.i64();
-  ring.dropped = v.i64();
+  v.fill(ring.capacity, ring.high_water, ring.pushed, ring.dropped);
   m.rings = {ring};
   m.num_rings = 1;
-  m.rate_hz = v.real();
-  m.ticks = v.i64();
-  m.deadline_misses = v.i64();
-  m.tick_jitter_p50_us = v.real();
-  m.tick_jitter_p99_us = v.real();
-  m.tick_jitter_max_us = v.real();
-  m.processing_p50_us = v.real();
-  m.processing_p99_us = v.real();
-  m.processing_max_us = v.real();
-  m.sample_age_p50_us = v.real();
-  m.sample_age_p99_us = v.real();
-  m.heading_rate_hz = v.real();
-  m.imu_rate_hz = v.real();
-  m.gps_rate_hz = v.real();
-  m.publish_errors = v.i64();
+  v.fill(m.rate_hz, m.ticks, m.deadline_misses, m.tick_jitter_p50_us, m.tick_jitter_p99_us, m.tick_jitter_max_us,
+         m.processing_p50_us, m.processing_p99_us, m.processing_max_us, m.sample_age_p50_us, m.sample_age_p99_us,
+         m.heading_rate_hz, m.imu_rate_hz, m.gps_rate_hz, m.publish_errors);
   m.counters = {counter("gate_gap", v.i64()), counter("weird, \"name\"", v.i64())};
   if (odd_counters) {
     m.counters.push_back(counter("gate_gap", v.i64()));

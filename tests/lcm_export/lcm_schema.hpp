@@ -22,7 +22,7 @@
 namespace headingd::lcm_export::test {
 
 struct LcmField {
-  std::string type;               // int64_t, double, string, boolean, counter_t, ...
+  std::string type;  // int64_t, double, string, boolean, counter_t, ...
   std::string name;
   std::vector<std::string> dims;  // "4" (fixed) or "num_sources" (the count field)
 };
@@ -158,7 +158,8 @@ class RowEncoder {
     const std::string& text = cell(key);
     std::int64_t value = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size()) throw std::runtime_error(key + ": not an integer: " + text);
+    if (ec != std::errc() || end != text.data() + text.size())
+      throw std::runtime_error(key + ": not an integer: " + text);
     return value;
   }
   void putInt(std::uint64_t value, int bytes) {
@@ -182,7 +183,8 @@ class RowEncoder {
       const std::string& text = cell(key);
       double value = 0.0;
       const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-      if (ec != std::errc() || end != text.data() + text.size()) throw std::runtime_error(key + ": not a double: " + text);
+      if (ec != std::errc() || end != text.data() + text.size())
+        throw std::runtime_error(key + ": not a double: " + text);
       std::uint64_t bits = 0;
       std::memcpy(&bits, &value, sizeof bits);
       putInt(bits, 8);
@@ -239,8 +241,8 @@ class RowEncoder {
         encodeStruct(element, key + "." + id + ".", id);
       }
     }
-    if (written != count) throw std::runtime_error(key + ": " + std::to_string(written) + " elements, count " +
-                                                   std::to_string(count));
+    if (written != count)
+      throw std::runtime_error(key + ": " + std::to_string(written) + " elements, count " + std::to_string(count));
   }
 
   const LcmSchema& schema_;

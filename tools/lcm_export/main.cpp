@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
       fingerprints += text;
     }
     std::fprintf(stderr, "headingd-lcm-export: %s: %" PRIu64 " messages of unknown type not exported (fingerprint%s)\n",
-                 u.channel.c_str(), u.messages, fingerprints.empty() ? " none: shorter than 8 bytes" : fingerprints.c_str());
+                 u.channel.c_str(), u.messages,
+                 fingerprints.empty() ? " none: shorter than 8 bytes" : fingerprints.c_str());
   }
   int status = kExitOk;
   if (!result.missing_channels.empty()) {
@@ -115,8 +116,8 @@ int main(int argc, char** argv) {
     status = kExitUsage;
   }
   if (result.log_error) {
-    std::fprintf(stderr, "headingd-lcm-export: %s: byte %" PRIu64 ": %s; the %" PRIu64
-                 " events before it are exported\n",
+    std::fprintf(stderr,
+                 "headingd-lcm-export: %s: byte %" PRIu64 ": %s; the %" PRIu64 " events before it are exported\n",
                  log_path.c_str(), result.log_error->offset(), result.log_error->what(), result.events_read);
     status = kExitBadLog;
   }

@@ -44,8 +44,8 @@ bool LcmLogReader::next(LcmLogEvent& event) {
   if (got == 0 && std::feof(file_)) return false;
   if (got != sizeof header) {
     if (std::ferror(file_)) throw std::runtime_error(path_ + ": read error at byte " + std::to_string(offset_));
-    throw LcmLogError(start, "truncated event: the file ends " + std::to_string(got) +
-                                 " bytes into the 28-byte event header");
+    throw LcmLogError(start,
+                      "truncated event: the file ends " + std::to_string(got) + " bytes into the 28-byte event header");
   }
   const auto sync = static_cast<std::uint32_t>(bigEndian(header, 4));
   if (sync != kLcmLogSyncWord) {
@@ -70,8 +70,7 @@ bool LcmLogReader::next(LcmLogEvent& event) {
   const std::uint64_t body = static_cast<std::uint64_t>(channel_bytes) + static_cast<std::uint64_t>(data_bytes);
   event.channel.resize(static_cast<std::size_t>(channel_bytes));
   event.data.resize(static_cast<std::size_t>(data_bytes));
-  if (!readExactly(event.channel.data(), event.channel.size()) ||
-      !readExactly(event.data.data(), event.data.size())) {
+  if (!readExactly(event.channel.data(), event.channel.size()) || !readExactly(event.data.data(), event.data.size())) {
     throw LcmLogError(start, "truncated event: it needs " + std::to_string(kLcmLogEventHeaderBytes + body) +
                                  " bytes, the file ends after " + std::to_string(offset_ - start));
   }

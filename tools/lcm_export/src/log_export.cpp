@@ -60,8 +60,8 @@ std::string describeEvent(const LcmLogEvent& event) {
 std::string tableFileName(const std::string& channel, const std::string& type, bool several_types) {
   std::string name;
   for (const char c : channel) {
-    const bool plain = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' ||
-                       c == '_' || c == '-';
+    const bool plain =
+        (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
     name.push_back(plain ? c : '_');
   }
   if (!name.empty() && name.front() == '.') name.front() = '_';
@@ -87,8 +87,7 @@ ExportResult exportLcmLog(const ExportOptions& options) {
       while (reader.next(event)) {
         seen.insert(event.channel);
         if (selected(event.channel)) {
-          const MessageType* type =
-              event.data.size() >= 8 ? findMessageType(fingerprintOf(event.data)) : nullptr;
+          const MessageType* type = event.data.size() >= 8 ? findMessageType(fingerprintOf(event.data)) : nullptr;
           if (type == nullptr) {
             UnknownMessages& u = unknown[event.channel];
             u.channel = event.channel;
@@ -104,9 +103,8 @@ ExportResult exportLcmLog(const ExportOptions& options) {
             row.clear();
             std::string error;
             if (!type->flatten(event.data, row, error)) {
-              throw LcmLogError(event.offset, describeEvent(event) + ": " + std::string(type->name) +
-                                                  " message of " + std::to_string(event.data.size()) + " bytes " +
-                                                  error);
+              throw LcmLogError(event.offset, describeEvent(event) + ": " + std::string(type->name) + " message of " +
+                                                  std::to_string(event.data.size()) + " bytes " + error);
             }
             tables.get(event.channel, type).layout.merge(row);
           }

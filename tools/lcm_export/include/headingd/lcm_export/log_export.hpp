@@ -14,7 +14,7 @@ namespace headingd::lcm_export {
 
 struct ExportOptions {
   std::filesystem::path log_path;
-  std::filesystem::path out_dir;    // created when missing
+  std::filesystem::path out_dir;      // created when missing
   std::vector<std::string> channels;  // exact channel names; empty: every channel
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 // The fields of headingd's LCM messages (daemon/lcm/*.lcm), in declaration order, for the
-// column writer. Constants are not fields (they are not on the wire). A field added to a
-// .lcm file must be added here: tests/lcm_export checks every table's header against the
-// .lcm files.
+// column writer: describeFields(message, writer) calls writer.field("name", message.name)
+// for each. Constants are not fields (they are not on the wire). A field added to a .lcm
+// file must be added here: tests/lcm_export encodes every exported row again from the .lcm
+// declarations and fails on a missing column.
 #include "headingd/attitude_t.hpp"
 #include "headingd/counter_t.hpp"
 #include "headingd/gps_t.hpp"
@@ -12,138 +13,81 @@
 #include "headingd/source_status_t.hpp"
 #include "headingd/status_t.hpp"
 
+// HEADINGD_LCM_FIELDS(a, b, ...) is w.field("a", m.a); w.field("b", m.b); ...: each name is
+// written once, so a column's name and the member it shows cannot disagree. (A macro loop:
+// each HEADINGD_LCM_RESCAN level rescans its argument 4 times, 4^4 = 256 fields at most.)
+#define HEADINGD_LCM_RESCAN(...) \
+  HEADINGD_LCM_RESCAN3(HEADINGD_LCM_RESCAN3(HEADINGD_LCM_RESCAN3(HEADINGD_LCM_RESCAN3(__VA_ARGS__))))
+#define HEADINGD_LCM_RESCAN3(...) \
+  HEADINGD_LCM_RESCAN2(HEADINGD_LCM_RESCAN2(HEADINGD_LCM_RESCAN2(HEADINGD_LCM_RESCAN2(__VA_ARGS__))))
+#define HEADINGD_LCM_RESCAN2(...) \
+  HEADINGD_LCM_RESCAN1(HEADINGD_LCM_RESCAN1(HEADINGD_LCM_RESCAN1(HEADINGD_LCM_RESCAN1(__VA_ARGS__))))
+#define HEADINGD_LCM_RESCAN1(...) __VA_ARGS__
+#define HEADINGD_LCM_FIELDS(...) __VA_OPT__(HEADINGD_LCM_RESCAN(HEADINGD_LCM_FIELD_EACH(__VA_ARGS__)))
+#define HEADINGD_LCM_FIELD_EACH(name, ...) \
+  w.field(#name, m.name);                  \
+  __VA_OPT__(HEADINGD_LCM_FIELD_AGAIN HEADINGD_LCM_PARENS(__VA_ARGS__))
+#define HEADINGD_LCM_PARENS ()
+#define HEADINGD_LCM_FIELD_AGAIN() HEADINGD_LCM_FIELD_EACH
+
 namespace headingd::lcm_export {
 
 template <class W>
 void describeFields(const headingd::heading_t& m, W& w) {
-  w.field("utime", m.utime);
-  w.field("sample_utime", m.sample_utime);
-  w.field("sample_age_us", m.sample_age_us);
-  w.field("validity", m.validity);
-  w.field("heading_true_rad", m.heading_true_rad);
-  w.field("heading_mag_rad", m.heading_mag_rad);
-  w.field("declination_rad", m.declination_rad);
-  w.field("declination_sigma_rad", m.declination_sigma_rad);
-  w.field("declination_sources", m.declination_sources);
-  w.field("declination_source", m.declination_source);
-  w.field("mount_yaw_rad", m.mount_yaw_rad);
-  w.field("mount_yaw_sigma_rad", m.mount_yaw_sigma_rad);
-  w.field("mag_disturbed", m.mag_disturbed);
-  w.field("mag_norm_jump", m.mag_norm_jump);
-  w.field("mag_dip_jump", m.mag_dip_jump);
-  w.field("mag_norm_reference", m.mag_norm_reference);
-  w.field("mag_dip_reference", m.mag_dip_reference);
-  w.field("mag_used", m.mag_used);
-  w.field("mag_gain", m.mag_gain);
-  w.field("mag_innovation_rad", m.mag_innovation_rad);
-  w.field("heading_redefined", m.heading_redefined);
+  HEADINGD_LCM_FIELDS(utime, sample_utime, sample_age_us, validity, heading_true_rad, heading_mag_rad, declination_rad,
+                      declination_sigma_rad, declination_sources, declination_source, mount_yaw_rad,
+                      mount_yaw_sigma_rad, mag_disturbed, mag_norm_jump, mag_dip_jump, mag_norm_reference,
+                      mag_dip_reference, mag_used, mag_gain, mag_innovation_rad, heading_redefined);
 }
 
 template <class W>
 void describeFields(const headingd::attitude_t& m, W& w) {
-  w.field("utime", m.utime);
-  w.field("sample_utime", m.sample_utime);
-  w.field("sample_age_us", m.sample_age_us);
-  w.field("validity", m.validity);
-  w.field("q_nb", m.q_nb);
-  w.field("roll_rad", m.roll_rad);
-  w.field("pitch_rad", m.pitch_rad);
-  w.field("yaw_rad", m.yaw_rad);
-  w.field("q_covariance", m.q_covariance);
-  w.field("motion_level", m.motion_level);
-  w.field("motion_level_name", m.motion_level_name);
-  w.field("accel_disturbance", m.accel_disturbance);
-  w.field("at_rest", m.at_rest);
-  w.field("gyro_bias_rad_s", m.gyro_bias_rad_s);
-  w.field("head_height", m.head_height);
+  HEADINGD_LCM_FIELDS(utime, sample_utime, sample_age_us, validity, q_nb, roll_rad, pitch_rad, yaw_rad, q_covariance,
+                      motion_level, motion_level_name, accel_disturbance, at_rest, gyro_bias_rad_s, head_height);
 }
 
 template <class W>
 void describeFields(const headingd::imu_t& m, W& w) {
-  w.field("utime", m.utime);
-  w.field("sample_utime", m.sample_utime);
-  w.field("source", m.source);
-  w.field("gyro_rad_s", m.gyro_rad_s);
-  w.field("accel_m_s2", m.accel_m_s2);
-  w.field("has_mag", m.has_mag);
-  w.field("mag_uT", m.mag_uT);
-  w.field("verdict", m.verdict);
-  w.field("verdict_name", m.verdict_name);
+  HEADINGD_LCM_FIELDS(utime, sample_utime, source, gyro_rad_s, accel_m_s2, has_mag, mag_uT, verdict, verdict_name);
 }
 
 template <class W>
 void describeFields(const headingd::gps_t& m, W& w) {
-  w.field("utime", m.utime);
-  w.field("sample_utime", m.sample_utime);
-  w.field("source", m.source);
-  w.field("fix_ok", m.fix_ok);
-  w.field("has_position", m.has_position);
-  w.field("latitude_deg", m.latitude_deg);
-  w.field("longitude_deg", m.longitude_deg);
-  w.field("height_m", m.height_m);
-  w.field("has_course", m.has_course);
-  w.field("course_rad", m.course_rad);
-  w.field("has_speed", m.has_speed);
-  w.field("speed_mps", m.speed_mps);
-  w.field("has_hdop", m.has_hdop);
-  w.field("hdop", m.hdop);
-  w.field("has_magvar", m.has_magvar);
-  w.field("magvar_rad", m.magvar_rad);
-  w.field("decimal_year", m.decimal_year);
+  HEADINGD_LCM_FIELDS(utime, sample_utime, source, fix_ok, has_position, latitude_deg, longitude_deg, height_m,
+                      has_course, course_rad, has_speed, speed_mps, has_hdop, hdop, has_magvar, magvar_rad,
+                      decimal_year);
 }
 
 template <class W>
 void describeFields(const headingd::counter_t& m, W& w) {
-  w.field("name", m.name);
-  w.field("value", m.value);
+  HEADINGD_LCM_FIELDS(name, value);
 }
 
 template <class W>
 void describeFields(const headingd::ring_status_t& m, W& w) {
-  w.field("name", m.name);
-  w.field("capacity", m.capacity);
-  w.field("high_water", m.high_water);
-  w.field("pushed", m.pushed);
-  w.field("dropped", m.dropped);
+  HEADINGD_LCM_FIELDS(name, capacity, high_water, pushed, dropped);
 }
 
 template <class W>
 void describeFields(const headingd::source_status_t& m, W& w) {
-  w.field("name", m.name);
-  w.field("kind", m.kind);
-  w.field("state", m.state);
-  w.field("last_error", m.last_error);
-  w.field("num_counters", m.num_counters);
-  w.field("counters", m.counters);
+  HEADINGD_LCM_FIELDS(name, kind, state, last_error, num_counters, counters);
 }
 
 template <class W>
 void describeFields(const headingd::status_t& m, W& w) {
-  w.field("utime", m.utime);
-  w.field("state", m.state);
-  w.field("reason", m.reason);
-  w.field("uptime_us", m.uptime_us);
-  w.field("num_sources", m.num_sources);
-  w.field("sources", m.sources);
-  w.field("num_rings", m.num_rings);
-  w.field("rings", m.rings);
-  w.field("rate_hz", m.rate_hz);
-  w.field("ticks", m.ticks);
-  w.field("deadline_misses", m.deadline_misses);
-  w.field("tick_jitter_p50_us", m.tick_jitter_p50_us);
-  w.field("tick_jitter_p99_us", m.tick_jitter_p99_us);
-  w.field("tick_jitter_max_us", m.tick_jitter_max_us);
-  w.field("processing_p50_us", m.processing_p50_us);
-  w.field("processing_p99_us", m.processing_p99_us);
-  w.field("processing_max_us", m.processing_max_us);
-  w.field("sample_age_p50_us", m.sample_age_p50_us);
-  w.field("sample_age_p99_us", m.sample_age_p99_us);
-  w.field("heading_rate_hz", m.heading_rate_hz);
-  w.field("imu_rate_hz", m.imu_rate_hz);
-  w.field("gps_rate_hz", m.gps_rate_hz);
-  w.field("publish_errors", m.publish_errors);
-  w.field("num_counters", m.num_counters);
-  w.field("counters", m.counters);
+  HEADINGD_LCM_FIELDS(utime, state, reason, uptime_us, num_sources, sources, num_rings, rings, rate_hz, ticks,
+                      deadline_misses, tick_jitter_p50_us, tick_jitter_p99_us, tick_jitter_max_us, processing_p50_us,
+                      processing_p99_us, processing_max_us, sample_age_p50_us, sample_age_p99_us, heading_rate_hz,
+                      imu_rate_hz, gps_rate_hz, publish_errors, num_counters, counters);
 }
 
 }  // namespace headingd::lcm_export
+
+#undef HEADINGD_LCM_FIELDS
+#undef HEADINGD_LCM_FIELD_EACH
+#undef HEADINGD_LCM_FIELD_AGAIN
+#undef HEADINGD_LCM_PARENS
+#undef HEADINGD_LCM_RESCAN
+#undef HEADINGD_LCM_RESCAN3
+#undef HEADINGD_LCM_RESCAN2
+#undef HEADINGD_LCM_RESCAN1
