@@ -181,20 +181,24 @@ TEST(LcmExport, TypeIsToldByFingerprintAndUnknownTypesAreCounted) {
   EXPECT_NE(r.out.find("front/heading\theading_t\t2 rows"), std::string::npos) << r.out;
 }
 
+// A good log of every type, to be damaged by each test.
+class LcmExportBadLog : public ::testing::Test {
+ protected:
+  TempDir work;
+  const std::vector<LoggedEvent> events = everyTypeOnItsChannel();
+  const std::filesystem::path log = work.path() / "run.lcm";
+  const std::vector<std::uint64_t> offsets = writeLcmLog(log, events);
+};
+
 // Cut in the middle of event `cut`'s data: an error at that event's offset, every event
 // before it in the tables.
-TEST(LcmExport, TruncatedLogIsReportedAtTheCutEventAndEarlierEventsAreKept) {
-  TempDir work;
-  const auto events = everyTypeOnItsChannel();
-  const std::filesystem::path log = work.path() / "run.lcm";
-  const auto offsets = writeLcmLog(log, events);
+TEST_F(LcmExportBadLog, TruncatedLogIsReportedAtTheCutEventAndEarlierEventsAreKept) {
   const std::size_t cut = 20;
   std::filesystem::resize_file(log, offsets[cut] + 28 + 4);
   expectBadLog(work.path(), log,
                log.string() + ": byte " + std::to_string(offsets[cut]) + ": truncated event: it needs " +
                    std::to_string(offsets[cut + 1] - offsets[cut]) +
-                   " bytes, the file ends after 32; the 20 events "
-                   "before it are exported");
+                   " bytes, the file ends after 32; the 20 events before it are exported");
   expectTableHoldsEvents(work.path() / "HEADING.csv", "heading_t", events, "HEADING", countOn(events, "HEADING", cut));
   expectTableHoldsEvents(work.path() / "STATUS.csv", "status_t", events, "STATUS", countOn(events, "STATUS", cut));
   EXPECT_FALSE(std::filesystem::exists(work.path() / "HEADING.csv.tmp"));
@@ -204,11 +208,7 @@ TEST(LcmExport, TruncatedLogIsReportedAtTheCutEventAndEarlierEventsAreKept) {
   expectBadLog(work.path(), log, "byte " + std::to_string(offsets[cut]) + ": truncated event: the file ends 10 bytes");
 }
 
-TEST(LcmExport, GarbageBetweenEventsIsReportedAtItsOffset) {
-  TempDir work;
-  const auto events = everyTypeOnItsChannel();
-  const std::filesystem::path log = work.path() / "run.lcm";
-  const auto offsets = writeLcmLog(log, events);
+TEST_F(LcmExportBadLog, GarbageBetweenEventsIsReportedAtItsOffset) {
   const std::size_t after = 12;
   std::string bytes = readText(log);
   bytes.insert(offsets[after], "garbage in the middle");
