@@ -38,7 +38,8 @@ void expectTableHoldsEvents(const std::filesystem::path& csv, const std::string&
     SCOPED_TRACE(csv.filename().string() + " row " + std::to_string(row));
     const auto& cells = table.rows[row++];
     EXPECT_EQ(cells.at("log_utime"), std::to_string(events[i].utime));
-    EXPECT_EQ(cells.at("event"), std::to_string(i));
+    EXPECT_EQ(cells.at("event"),
+              std::to_string(events[i].event_number >= 0 ? events[i].event_number : static_cast<std::int64_t>(i)));
     RowEncoder encoder(schema, table.header, cells);
     EXPECT_EQ(encoder.encode(type, fingerprintOfType(type)), events[i].data);
   }
@@ -97,6 +98,33 @@ TEST(LcmExport, EveryFieldOfEveryTypeComesBackFromTheTables) {
   EXPECT_EQ(
       std::distance(std::filesystem::directory_iterator(work.path() / "tables"), std::filesystem::directory_iterator()),
       5);
+}
+
+// The daemon's own messages: the demo capture played into an LCM log file (LCM's file
+// provider), exported, every HEADING, ATTITUDE, GPS and STATUS row encoded again to the
+// logged bytes, and one IMU row per sample played.
+TEST(LcmExport, TheDaemonsLogOfTheDemoExportsEveryMessage) {
+  TempDir work;
+  const std::filesystem::path log = work.path() / "demo.lcm";
+  const std::string play = "sh " HEADINGD_DEMO_PLAYBACK_TOML " " HEADINGD_CONFIG_DIR " " + log.string() + " > " +
+                           (work.path() / "play.toml").string() + " && " HEADINGD_BIN " --config " +
+                           (work.path() / "play.toml").string() + " --log-level error";
+  ASSERT_EQ(std::system(play.c_str()), 0) << play;
+  const auto events = readLcmLog(log);
+  const RunResult r = runExporter(work.path(), log.string() + " --out-dir " + (work.path() / "tables").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  for (const auto& [channel, type] : std::vector<std::pair<std::string, std::string>>{
+           {"HEADING", "heading_t"}, {"ATTITUDE", "attitude_t"}, {"GPS", "gps_t"}, {"STATUS", "status_t"}}) {
+    expectTableHoldsEvents(work.path() / "tables" / (channel + ".csv"), type, events, channel,
+                           countOn(events, channel));
+  }
+  const CsvTableData status = readCsv(work.path() / "tables" / "STATUS.csv");
+  ASSERT_FALSE(status.rows.empty());
+  const std::string samples = status.rows.back().at("sources.candump_log.counters.samples_pushed");
+  EXPECT_EQ(samples, "60001");
+  EXPECT_EQ(std::to_string(countOn(events, "IMU")), samples);
+  EXPECT_NE(r.out.find("IMU\timu_t\t" + samples + " rows"), std::string::npos) << r.out;
 }
 
 TEST(LcmExport, ColumnsFollowTheDeclarationsAndCountersAreKeyedByName) {

@@ -26,7 +26,20 @@ struct LoggedEvent {
   std::string channel;
   std::vector<std::uint8_t> data;
   std::int64_t utime = 0;
+  std::int64_t event_number = -1;  // -1: its index in the log (writeLcmLog numbers them so)
 };
+
+// Every event of an LCM log, read with LCM's own reader.
+inline std::vector<LoggedEvent> readLcmLog(const std::filesystem::path& path) {
+  lcm::LogFile log(path.string(), "r");
+  if (!log.good()) throw std::runtime_error(path.string() + ": cannot read");
+  std::vector<LoggedEvent> events;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    const auto* bytes = static_cast<const std::uint8_t*>(e->data);
+    events.push_back(LoggedEvent{e->channel, {bytes, bytes + e->datalen}, e->timestamp, e->eventnum});
+  }
+  return events;
+}
 
 template <class Message>
 LoggedEvent eventOf(const std::string& channel, const Message& message, std::int64_t utime) {

@@ -223,8 +223,9 @@ class RowEncoder {
     for (const std::string& column : header_) {
       if (column.rfind(key + ".", 0) != 0) continue;
       const std::string rest = column.substr(key.size() + 1);
-      const bool by_index = rest[0] == '#';
-      const std::string id = (by_index || !name_value) ? rest.substr(0, rest.find('.')) : rest;
+      const std::string id = rest[0] == '#' ? rest.substr(0, rest.find('.'))
+                             : name_value   ? rest
+                                            : elementName(element, rest);
       if (present.emplace(id, false).second) elements.push_back(id);
       if (!cell(column).empty()) present[id] = true;
     }
@@ -243,6 +244,20 @@ class RowEncoder {
     }
     if (written != count)
       throw std::runtime_error(key + ": " + std::to_string(written) + " elements, count " + std::to_string(count));
+  }
+
+  // The element's name in `rest` ("candump_log.imu.capacity": names may hold dots): what
+  // comes before the first ".field" that starts with one of the element's fields.
+  static std::string elementName(const LcmStruct& element, const std::string& rest) {
+    for (std::size_t dot = rest.find('.'); dot != std::string::npos; dot = rest.find('.', dot + 1)) {
+      const std::string tail = rest.substr(dot + 1);
+      for (const LcmField& f : element.fields) {
+        if (tail == f.name || tail.rfind(f.name + ".", 0) == 0 || tail.rfind(f.name + "_", 0) == 0) {
+          return rest.substr(0, dot);
+        }
+      }
+    }
+    throw std::runtime_error("no field of " + element.name + " in column part " + rest);
   }
 
   const LcmSchema& schema_;

@@ -31,7 +31,8 @@ Columns:
   Variable-length arrays of named elements are keyed by the element's name, so a column
   means the same thing in every row even when sources or counters come and go:
   sources.<source>.state, sources.<source>.counters.<counter>, rings.<ring>.dropped,
-  counters.<counter> (a counter_t's value). A first pass over the log finds every name;
+  counters.<counter> (a counter_t's value); names are kept as they are, dots included
+  (rings.candump_log.imu.dropped). A first pass over the log finds every name;
   a cell is empty where a message has no such element. An element with an empty or
   repeated name is keyed by its index instead: counters.#3.name, counters.#3.value.
   The order of the elements within one message is not kept, their names and values are.
