@@ -106,6 +106,10 @@ int main(int argc, char** argv) {
                  u.channel.c_str(), u.messages,
                  fingerprints.empty() ? " none: shorter than 8 bytes" : fingerprints.c_str());
   }
+  if (result.tables.empty() && !result.log_error) {
+    std::fprintf(stderr, "headingd-lcm-export: %s: no message of headingd's types%s, no table written\n",
+                 log_path.c_str(), options.channels.empty() ? "" : " on the chosen channels");
+  }
   int status = kExitOk;
   if (!result.missing_channels.empty()) {
     std::string have;
