@@ -270,6 +270,27 @@ TEST(LcmExport, AbsurdLengthAndUndecodableMessageAreReportedAtTheirEvent) {
   EXPECT_EQ(readCsv(work.path() / "HEADING.csv").rows.size(), 1u);
 }
 
+// A status_t whose num_sources says 50 000 000 in 100-odd bytes: reported at once (the
+// generated decoder would allocate gigabytes before it found out), earlier rows kept.
+TEST(LcmExport, CorruptCountIsReportedWithoutAllocatingIt) {
+  TempDir work;
+  AwkwardValues v(7);
+  headingd::status_t status = awkwardStatus(v, {}, 0, false);
+  status.state = "ok";
+  status.reason = "";
+  std::vector<LoggedEvent> events{eventOf("STATUS", status, 1), eventOf("STATUS", status, 2)};
+  const std::size_t num_sources_at = 8 + 8 + (4 + 3) + (4 + 1) + 8;  // fingerprint, utime, state, reason, uptime_us
+  const std::uint8_t huge[4] = {0x02, 0xFA, 0xF0, 0x80};             // 50 000 000
+  std::copy(std::begin(huge), std::end(huge), events[1].data.begin() + num_sources_at);
+  const std::filesystem::path log = work.path() / "run.lcm";
+  const auto offsets = writeLcmLog(log, events);
+  expectBadLog(work.path(), log,
+               "byte " + std::to_string(offsets[1]) + ": event 1 on channel STATUS: status_t message of " +
+                   std::to_string(events[1].data.size()) +
+                   " bytes does not decode (a count or length that does not fit the message)");
+  expectTableHoldsEvents(work.path() / "STATUS.csv", "status_t", events, "STATUS", 1);
+}
+
 TEST(LcmExport, MissingLogAndBadArgumentsHaveTheirExitStatus) {
   TempDir work;
   RunResult r = runExporter(work.path(), (work.path() / "none.lcm").string() + " --out-dir " + work.path().string());

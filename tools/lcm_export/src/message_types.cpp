@@ -4,6 +4,7 @@
 #include <climits>
 #include <exception>
 
+#include "headingd/lcm_export/decode_allocation_limit.hpp"
 #include "headingd/lcm_export/message_fields.hpp"
 
 namespace headingd::lcm_export {
@@ -20,11 +21,11 @@ bool flattenAs(std::span<const std::uint8_t> data, FlatRow& row, std::string& er
   const int size = static_cast<int>(data.size());
   int used = -1;
   try {
+    const DecodeAllocationLimit limit(kMaxMemoryBytesPerWireByte * data.size() + 4096);
     used = message.decode(data.data(), 0, size);
-  } catch (const std::exception& e) {
-    // lcm-gen's decoders size strings and arrays from the data before checking them: a
-    // corrupt length throws (length_error, bad_alloc) instead of returning -1.
-    error = std::string("does not decode (") + e.what() + ")";
+  } catch (const std::exception&) {
+    // bad_alloc from the limit; length_error, out_of_range from a negative count or length.
+    error = "does not decode (a count or length that does not fit the message)";
     return false;
   }
   if (used < 0) {
@@ -39,6 +40,11 @@ bool flattenAs(std::span<const std::uint8_t> data, FlatRow& row, std::string& er
   describeFields(message, writer);
   return true;
 }
+
+// The elements of headingd's variable-length arrays fit the allocation limit's factor.
+static_assert(sizeof(headingd::source_status_t) <= kMaxMemoryBytesPerWireByte);
+static_assert(sizeof(headingd::ring_status_t) <= kMaxMemoryBytesPerWireByte);
+static_assert(sizeof(headingd::counter_t) <= kMaxMemoryBytesPerWireByte);
 
 template <class Message>
 MessageType typeOf() {
