@@ -55,6 +55,17 @@ std::string describeEvent(const LcmLogEvent& event) {
   return "event " + std::to_string(event.event_number) + " on channel " + event.channel;
 }
 
+void countUnknown(UnknownMessages& u, const LcmLogEvent& event) {
+  u.channel = event.channel;
+  ++u.messages;
+  if (event.data.size() < 8) return;
+  const std::int64_t fingerprint = fingerprintOf(event.data);
+  if (u.fingerprints.size() < kFingerprintsShown &&
+      std::find(u.fingerprints.begin(), u.fingerprints.end(), fingerprint) == u.fingerprints.end()) {
+    u.fingerprints.push_back(fingerprint);
+  }
+}
+
 }  // namespace
 
 std::string tableFileName(const std::string& channel, const std::string& type, bool several_types) {
@@ -89,16 +100,7 @@ ExportResult exportLcmLog(const ExportOptions& options) {
         if (selected(event.channel)) {
           const MessageType* type = event.data.size() >= 8 ? findMessageType(fingerprintOf(event.data)) : nullptr;
           if (type == nullptr) {
-            UnknownMessages& u = unknown[event.channel];
-            u.channel = event.channel;
-            ++u.messages;
-            if (event.data.size() >= 8) {
-              const std::int64_t fingerprint = fingerprintOf(event.data);
-              if (u.fingerprints.size() < kFingerprintsShown &&
-                  std::find(u.fingerprints.begin(), u.fingerprints.end(), fingerprint) == u.fingerprints.end()) {
-                u.fingerprints.push_back(fingerprint);
-              }
-            }
+            countUnknown(unknown[event.channel], event);
           } else {
             row.clear();
             std::string error;
