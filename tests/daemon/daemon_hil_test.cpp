@@ -68,8 +68,6 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-void run(const std::string& command) { ASSERT_EQ(std::system(command.c_str()), 0) << command; }
-
 TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
   // Needs a vcan interface: CTest runs this binary inside tools/scripts/vm-run.sh (this
   // host's kernel has no CAN); run by hand without it, it says so instead of failing.
@@ -77,21 +75,9 @@ TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
   test::TempDir dir;
 
   // The simulated walk, cut to kSeconds: IMU rows, truth rows, GPS epochs (GGA, RMC, VTG each).
-  run(std::string(HEADINGD_SIM_BIN) + " --scenario thesis-declination --seed 1 --cof " HEADINGD_CONFIG_DIR
-      "/wmm/WMM2025.COF --out-dir " + dir.file("sim") + " >/dev/null");
-  run("head -n " + std::to_string(kRows + 1) + " " + dir.file("sim/imu.csv") + " > " + dir.file("imu.csv"));
-  const std::string can_table = test::vcanCanTable(HEADINGD_CONFIG_DIR);
-  test::writeCandumpLog(dir, HEADINGD_CANDUMP_FROM_CSV_BIN, can_table, dir.file("imu.csv"));
-  std::vector<std::string> epochs;  // the bytes of each GPS epoch
-  {
-    std::istringstream in(test::readFile(dir.file("sim/gps.nmea")));
-    std::string line;
-    while (std::getline(in, line) && epochs.size() <= static_cast<std::size_t>(kSeconds)) {
-      if (line.rfind("$GPGGA", 0) == 0) epochs.emplace_back();
-      ASSERT_FALSE(epochs.empty()) << "the capture starts with GGA";
-      epochs.back() += line + "\n";
-    }
-  }
+  const std::string can_table = test::simulatedWalkOnVcan(dir, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN,
+                                                          HEADINGD_CONFIG_DIR, kRows);
+  const std::vector<std::string> epochs = test::nmeaEpochs(dir.file("sim/gps.nmea"), kSeconds);
   ASSERT_GE(epochs.size(), static_cast<std::size_t>(kSeconds));
   const auto truth = readCsv(dir.file("sim/truth.csv"));
   ASSERT_GT(truth.size(), static_cast<std::size_t>(kRows));

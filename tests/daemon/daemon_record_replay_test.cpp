@@ -53,20 +53,9 @@ TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
   test::TempDir dir;
 
   // Inputs: the start of a simulated walk as CAN frames and NMEA epochs.
-  run(std::string(HEADINGD_SIM_BIN) + " --scenario thesis-declination --seed 1 --cof " HEADINGD_CONFIG_DIR
-      "/wmm/WMM2025.COF --out-dir " + dir.file("sim") + " >/dev/null");
-  run("head -n " + std::to_string(kRows + 1) + " " + dir.file("sim/imu.csv") + " > " + dir.file("imu.csv"));
-  const std::string can_table = test::vcanCanTable(HEADINGD_CONFIG_DIR);
-  test::writeCandumpLog(dir, HEADINGD_CANDUMP_FROM_CSV_BIN, can_table, dir.file("imu.csv"));
-  std::vector<std::string> epochs;
-  {
-    std::istringstream in(test::readFile(dir.file("sim/gps.nmea")));
-    std::string line;
-    while (std::getline(in, line) && epochs.size() <= static_cast<std::size_t>(kSeconds)) {
-      if (line.rfind("$GPGGA", 0) == 0) epochs.emplace_back();
-      if (!epochs.empty()) epochs.back() += line + "\n";
-    }
-  }
+  const std::string can_table = test::simulatedWalkOnVcan(dir, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN,
+                                                          HEADINGD_CONFIG_DIR, kRows);
+  const std::vector<std::string> epochs = test::nmeaEpochs(dir.file("sim/gps.nmea"), kSeconds);
   ASSERT_GE(epochs.size(), static_cast<std::size_t>(kSeconds));
 
   // Live, recorded twice: by the black box (inputs) and by lcm-logger (outputs).

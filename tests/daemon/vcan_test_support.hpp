@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <regex>
+#include <sstream>
+#include <vector>
 #include <string>
 #include <thread>
 
@@ -32,6 +34,35 @@ inline void writeCandumpLog(const TempDir& dir, const std::string& candump_from_
   const std::string command = candump_from_csv_bin + " --imu-csv " + imu_csv + " --can-config " +
                               dir.file("can.toml") + " --out " + dir.file("imu.log") + " >/dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+// headingd-sim's thesis-declination walk (seed 1; stand 10 s, walk north, ...) into dir/sim/
+// (imu.csv, gps.nmea, truth.csv), its first `rows` IMU rows as dir/imu.csv and as the candump
+// log dir/imu.log for vcan0 (writeCandumpLog). Returns the [can] table.
+inline std::string simulatedWalkOnVcan(const TempDir& dir, const std::string& sim_bin, const std::string& candump_bin,
+                                       const std::string& config_dir, int rows) {
+  const std::string sim = sim_bin + " --scenario thesis-declination --seed 1 --cof " + config_dir +
+                          "/wmm/WMM2025.COF --out-dir " + dir.file("sim") + " >/dev/null";
+  EXPECT_EQ(std::system(sim.c_str()), 0) << sim;
+  const std::string head =
+      "head -n " + std::to_string(rows + 1) + " " + dir.file("sim/imu.csv") + " > " + dir.file("imu.csv");
+  EXPECT_EQ(std::system(head.c_str()), 0) << head;
+  const std::string can_table = vcanCanTable(config_dir);
+  writeCandumpLog(dir, candump_bin, can_table, dir.file("imu.csv"));
+  return can_table;
+}
+
+// The bytes of each GPS epoch (GGA, RMC, VTG, starting at GGA) of an NMEA capture, the
+// first `count` (and one more, when there is one).
+inline std::vector<std::string> nmeaEpochs(const std::string& nmea_path, std::size_t count) {
+  std::vector<std::string> epochs;
+  std::istringstream in(readFile(nmea_path));
+  std::string line;
+  while (std::getline(in, line) && epochs.size() <= count) {
+    if (line.rfind("$GPGGA", 0) == 0) epochs.emplace_back();
+    if (!epochs.empty()) epochs.back() += line + "\n";
+  }
+  return epochs;
 }
 
 // A source's counter on STATUS by name, -1 when it has none.

@@ -5,7 +5,8 @@
 # demo's IMU into vcan0 with canplayer, and checks:
 #   1. `systemctl start headingd` returns with the unit active (Type=notify: after READY=1);
 #   2. HEADING on LCM at 100 Hz (under plain emulation: the 100 Hz schedule, see below),
-#      fresh (the IMU flows), one per estimator tick, and GPS epochs from the pty;
+#      fresh (the IMU flows), one per estimator tick, and GPS epochs from the pty; the black
+#      box records the can, gps and estimator streams under /var/lib/headingd/recordings;
 #   3. a SIGSTOPped daemon is killed by the watchdog and restarted;
 #   4. a SIGKILLed daemon is restarted (Restart=on-failure);
 #   5. journalctl -p warning shows the daemon's warnings and not its info lines;
@@ -157,6 +158,20 @@ sleep 6
 kill -INT "$logger_pid"; wait "$logger_pid" 2>/dev/null
 "$python" "$here/lcm_headingd_check.py" "$work/lcm.log" --min-heading-hz "$min_heading_hz" --min-gps 3 \
   || failures=$((failures + 1))
+
+# The black box is on under the unit: the live inputs go to StateDirectory's recordings/.
+step "black box: recording under /var/lib/headingd/recordings"
+recording=$(ls -d /var/lib/headingd/recordings/*/ 2>/dev/null | tail -n1)
+if [[ -n "$recording" && -s "$recording/header.toml" && -s "$recording/replay.toml" ]]; then
+  pass "recording folder $recording with header.toml and replay.toml"
+else fail "no recording folder with header.toml under /var/lib/headingd/recordings"; fi
+for stream in can gps estimator; do
+  if [[ -s "$recording/$stream.000001.log" ]]; then
+    pass "$stream stream recorded ($(wc -l <"$recording/$stream.000001.log") lines so far, owner $(stat -c %U "$recording/$stream.000001.log"))"
+  else fail "$stream stream not recorded ($recording$stream.000001.log empty or missing)"; fi
+done
+if journalctl -q -u "$unit" -o cat SYSLOG_IDENTIFIER=headingd | grep -q 'black box: recording the inputs to'; then
+  pass "the journal says where it records"; else fail "no 'black box: recording' line in the journal"; fi
 
 # ---------------------------------------------------------------------------------------------
 watchdog_us=$(usec "$(prop WatchdogUSec)")

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -15,6 +14,7 @@
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
 #include "headingd/files/numeric_csv.hpp"
+#include "headingd/lcm_export/lcm_log_writer.hpp"
 #include "headingd/recording/recording_format.hpp"
 #include "headingd/recording/recording_reader.hpp"
 #include "headingd/replay/replay_csv_writer.hpp"
@@ -42,9 +42,7 @@ Channels channelsOf(const std::string& folder) {
 // time (there is no publish time offline), their validity FRESH once there is an estimate.
 class EstimateLog {
  public:
-  EstimateLog(const std::string& path, Channels channels) : log_(path, "w"), channels_(std::move(channels)) {
-    if (!log_.good()) throw std::runtime_error(path + ": cannot open for writing");
-  }
+  EstimateLog(const std::string& path, Channels channels) : log_(path), channels_(std::move(channels)) {}
   void write(const core::HeadingPipeline& pipeline, std::int64_t sample_t_ns) {
     const core::HeadingOutput& out = pipeline.output();
     daemon::PublishTimes t;
@@ -53,28 +51,16 @@ class EstimateLog {
     const daemon::Validity v = out.attitude.valid ? daemon::Validity::kFresh : daemon::Validity::kNone;
     daemon::fillHeading(heading_, out, v, t);
     daemon::fillAttitude(attitude_, out, pipeline.estimator().ekf().covariance(), v, t);
-    put(channels_.heading, heading_, t.utime_us);
-    put(channels_.attitude, attitude_, t.utime_us);
+    log_.write(channels_.heading, t.utime_us, heading_);
+    log_.write(channels_.attitude, t.utime_us, attitude_);
   }
+  void close() { log_.close(); }
 
  private:
-  template <class Message>
-  void put(const std::string& channel, const Message& m, std::int64_t utime_us) {
-    buffer_.resize(static_cast<std::size_t>(m.getEncodedSize()));
-    m.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
-    lcm::LogEvent event{};
-    event.timestamp = utime_us;
-    event.channel = channel;
-    event.datalen = static_cast<std::int32_t>(buffer_.size());
-    event.data = buffer_.data();
-    if (log_.writeEvent(&event) != 0) throw std::runtime_error("writing the LCM log failed");
-  }
-
-  lcm::LogFile log_;
+  lcm_export::LcmLogWriter log_;
   Channels channels_;
   headingd::heading_t heading_{};
   headingd::attitude_t attitude_{};
-  std::vector<std::uint8_t> buffer_;
 };
 
 void printRecordingCounters(const recording::RecordingReader& reader) {
@@ -145,6 +131,7 @@ int replayRecording(const RecordingReplayOptions& options) {
   const ReplayTotals totals{samples, std::chrono::duration_cast<std::chrono::nanoseconds>(
                                          std::chrono::steady_clock::now() - start)};
   if (rows) rows->close();
+  if (estimates) estimates->close();
   printCounters(pipeline.estimator().counters(), totals);
   printRecordingCounters(reader);
   return 0;
