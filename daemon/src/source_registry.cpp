@@ -95,7 +95,7 @@ void checkTimeAxes(const SourceConfigs& configs, const toml::table& doc, const s
   const bool not_log = any([](const SourceConfig* c) { return timeAxisOf(*c) != TimeAxis::kLogClock; });
   for (const SourceConfig* c : enabled) {
     if (timeAxisOf(*c) == TimeAxis::kLogClock && not_log) {
-      failAtEnabled(*c, "the log sources " + tableList([](TimeAxis a) { return a == TimeAxis::kLogClock; }, " / ") +
+      failAtEnabled(*c, "the log sources " + tableList([](TimeAxis a) { return a == TimeAxis::kLogClock; }, " and ") +
                             " play on the logs' own clock and cannot run together with " +
                             tableList([](TimeAxis a) { return a != TimeAxis::kLogClock; }, " or ") +
                             "; disable one of them");

@@ -198,7 +198,7 @@ TEST_F(DaemonConfigErrors, LogSourcesNameTheirKeys) {
   dir.write("gps.nmea", "$GPGGA,120000.00,,,,,0,00,99.99,,M,,M,,*65\n");
   const std::string mixed =
       errorOf(dir, "[nmea_log]\nenabled = true\npath = \"gps.nmea\"\n[gps]\ndevice = \"/dev/null\"\n");
-  EXPECT_NE(mixed.find(at(2) + "[nmea_log] enabled: the log sources [candump_log] / [nmea_log] / [recording] play on "
+  EXPECT_NE(mixed.find(at(2) + "[nmea_log] enabled: the log sources [candump_log], [nmea_log] and [recording] play on "
                                "the logs' own clock and cannot run together"),
             std::string::npos)
       << mixed;
