@@ -535,6 +535,8 @@ TEST(Recorder, TheWriterThreadRunsAtNormalSchedulingWhenStartedFromARealTimeThre
     recorder.start({});
   });
   starter.join();
+  // Without CAP_SYS_NICE or an RLIMIT_RTPRIO (an unprivileged user) there is no SCHED_FIFO
+  // thread to start the recorder from, so nothing to check: skipped, saying why.
   if (start_error != 0) GTEST_SKIP() << "SCHED_FIFO refused here: " << std::strerror(start_error);
   ASSERT_TRUE(started_at_fifo);
   // The writer thread names itself "recorder".
