@@ -36,7 +36,11 @@ SampleVerdict HeadingPipeline::process(const ImuSample& s) {
     ever_disturbed_ = true;
   }
   const Vec3 gyro = s.gyro_rad_s - a.gyro_bias_rad_s;
-  epoch_compass_.add(gyro, s.accel_m_s2, s.has_mag ? &s.mag_uT : nullptr, a.dt_s);
+  // The interval's compass heading is compared with a course only when the interval began at
+  // an epoch with a fix and a course (courseGatesPass needs previous_gps_ns_, which only
+  // processGps changes). Before the first such epoch, or after one without, the heading would
+  // be dropped unread, so the samples are not summed: without GPS the compass costs nothing.
+  if (previous_gps_ns_) epoch_compass_.add(gyro, s.accel_m_s2, s.has_mag ? &s.mag_uT : nullptr, a.dt_s);
   const bool walking = last_walking_gps_ns_ && s.t_ns - *last_walking_gps_ns_ < 2'000'000'000 && a.head_height > 0.8;
   if (walking && a.valid) {
     gait_.update(gyro, s.accel_m_s2, a.dt_s);

@@ -86,11 +86,13 @@ Mat34 rotateEarthToBodyJacobian(const Vec4& q, const Vec3& v) {
   return 2.0 * h;
 }
 
-EulerAngles eulerZyx(const Quat& q_nb) {
+EulerAngles eulerZyx(const Quat& q_nb) { return eulerZyx(q_nb, yawZyx(q_nb)); }
+
+EulerAngles eulerZyx(const Quat& q_nb, double yaw_rad) {
   const double q0 = q_nb.w(), q1 = q_nb.x(), q2 = q_nb.y(), q3 = q_nb.z();
   const double sin_pitch = std::clamp(2.0 * (q0 * q2 - q1 * q3), -1.0, 1.0);
   return {std::atan2(2.0 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3), std::asin(sin_pitch),
-          yawZyx(q_nb)};
+          yaw_rad};
 }
 
 double yawZyx(const Quat& q_nb) {

@@ -51,7 +51,7 @@ void ReplayCsvWriter::write(std::int64_t t_ns, const core::HeadingOutput& h) {
     p = put(p, with_gps_ ? ",nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,none,nan,nan,0\n"
                          : ",nan,nan,nan,nan,nan,nan,nan\n");
   } else {
-    const core::EulerAngles euler = core::eulerZyx(e.q_nb);
+    const core::EulerAngles euler = core::eulerZyx(e.q_nb, e.yaw_rad);  // yaw_rad is yawZyx(q_nb)
     for (const double q : {e.q_nb.w(), e.q_nb.x(), e.q_nb.y(), e.q_nb.z()}) {
       *p++ = ',';
       p = putFixed(p, q, 9);

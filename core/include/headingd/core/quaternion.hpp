@@ -53,6 +53,9 @@ struct EulerAngles {
   double yaw_rad;
 };
 EulerAngles eulerZyx(const Quat& q_nb);
+// The same with the yaw known already (yawZyx(q_nb), which the estimator publishes as
+// EstimatorOutput::yaw_rad): roll and pitch only, one atan2 fewer per row of a replay.
+EulerAngles eulerZyx(const Quat& q_nb, double yaw_rad);
 // The yaw of eulerZyx alone (one atan2 instead of two and an asin).
 double yawZyx(const Quat& q_nb);
 
