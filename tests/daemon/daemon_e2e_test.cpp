@@ -527,11 +527,31 @@ TEST(DaemonCommandLine, CheckConfigRunsEveryCheckOfStartUp) {
   dbc.replace(dbc.find("(0.0001,0)"), 10, "(nan,0)");
   dir.write("nan.dbc", dbc);
   std::string can = test::readFile(std::string(HEADINGD_CONFIG_DIR) + "/can-headingd.toml");
-  can.replace(can.find("dbc/headingd_imu.dbc"), 20, "nan.dbc");
+  can.replace(can.find("dbc = \"dbc/headingd_imu.dbc\""), 28, "dbc = \"nan.dbc\"");
   dir.write("can.toml", can);
   expectBad("[candump_log]\nenabled = true\npath = \"" + std::string(HEADINGD_CONFIG_DIR) +
                 "/demo/sim-urban-walk-can.log.gz\"\ncan_config = \"can.toml\"\n",
             dir.file("nan.dbc") + ":17: expected a finite, non-zero factor");
+}
+
+// A start-up held up by a long file ends at once on SIGTERM. Before, the signals were blocked
+// from the first line of main, so it read on to the end and only then stopped (exit 0).
+TEST(DaemonCommandLine, SigtermDuringStartUpEndsItAtOnce) {
+  TempDir dir;
+  // The demo's candump log ten times over (gzip members in a row, one stream to zlib): 1.8
+  // million frames, read and decoded at start-up for well over a second.
+  const std::string demo_log = test::readFile(std::string(HEADINGD_CONFIG_DIR) + "/demo/sim-urban-walk-can.log.gz");
+  std::string long_log;
+  for (int i = 0; i < 10; ++i) long_log += demo_log;
+  dir.write("long.log.gz", long_log);
+  const std::string config = dir.write(
+      "long.toml", "[candump_log]\nenabled = true\npath = \"long.log.gz\"\ncan_config = \"" +
+                       std::string(HEADINGD_CONFIG_DIR) + "/can-headingd.toml\"\n[lcm]\nurl = \"memq://\"\n");
+  ChildProcess run({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  std::this_thread::sleep_for(100ms);  // inside the start-up's reading
+  run.signal(SIGTERM);
+  EXPECT_EQ(run.waitFor(1s), -2) << "not ended by SIGTERM: " << test::readFile(dir.file("err"));
+  EXPECT_EQ(test::readFile(dir.file("err")).find("running:"), std::string::npos);
 }
 
 TEST(DaemonCommandLine, BadOptionsExitWithTheDocumentedStatus) {

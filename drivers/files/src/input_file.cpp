@@ -22,7 +22,7 @@ std::string kindProblem(const struct stat& st) {
 }
 
 std::string tooLarge(std::uint64_t size, std::uint64_t limit) {
-  return "is " + bytesText(size) + ", larger than the " + bytesText(limit) + " such a file may have";
+  return "is " + std::to_string(size) + " bytes, more than the " + bytesText(limit) + " such a file may have";
 }
 
 }  // namespace
@@ -33,6 +33,8 @@ std::string bytesText(std::uint64_t bytes) {
     std::snprintf(text, sizeof text, "%llu MiB", static_cast<unsigned long long>(bytes / kMiB));
   } else if (bytes >= kMiB) {
     std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / static_cast<double>(kMiB));
+  } else if (bytes >= 1024 && bytes % 1024 == 0) {
+    std::snprintf(text, sizeof text, "%llu kiB", static_cast<unsigned long long>(bytes / 1024));
   } else if (bytes >= 1024) {
     std::snprintf(text, sizeof text, "%.1f kiB", static_cast<double>(bytes) / 1024.0);
   } else {

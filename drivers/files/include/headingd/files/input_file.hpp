@@ -63,7 +63,7 @@ std::string inputFileProblem(const std::string& path, std::uint64_t limit);
 // The whole file, plain bytes, at most `limit` bytes (FileError naming the file and limit).
 std::string readWholeFile(const std::string& path, std::uint64_t limit);
 
-// "1 MiB", "16 MiB", "3 kiB": limits in messages.
+// "1 MiB", "16 MiB", "2 kiB", "2.9 kiB": limits in messages.
 std::string bytesText(std::uint64_t bytes);
 
 }  // namespace headingd::files
