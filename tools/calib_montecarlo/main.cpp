@@ -145,8 +145,8 @@ int main(int argc, char** argv) {
                  "known: the calibration is told the simulated dip, its sign and value (as headingd-calibrate is by "
                  "the WMM at --lat/--lon/--date); unknown: it is not (eq. 27's best minimum, one ML start)")
       ->check(CLI::IsMember({"known", "unknown"}));
-  app.footer("Exit codes: 0 done, 1 --require-ml-better not met, 2 bad arguments or --out cannot be written (it is "
-             "written at the end, through a temporary file renamed into place).");
+  app.footer(std::string("Exit codes: 0 done, 1 --require-ml-better not met, 2 bad arguments or --out cannot be written (it is "
+             "written at the end, through a temporary file renamed into place).") + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
   g_place_known = place == "known";
   g_decimation = decimation;

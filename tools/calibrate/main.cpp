@@ -74,10 +74,10 @@ std::optional<int> parseArguments(int argc, char** argv, Arguments& a) {
                  "(ellipsoid and ml; it picks between the mirror solutions of the misalignment step)");
   app.add_option("--first-sample", a.first, "first row used (0-based)");
   app.add_option("--end-sample", a.end, "one past the last row used (default: all)");
-  app.footer("Without --field-uT or --lat/--lon/--date the field norm is taken from the data (D scaled to unit "
+  app.footer(std::string("Without --field-uT or --lat/--lon/--date the field norm is taken from the data (D scaled to unit "
              "determinant) and the file says so. Exit codes: 0 written, 1 file error, 2 bad arguments, 3 the data "
-             "cannot give a calibration (the message says why). Outputs are written to a temporary file in the same folder "
-             "and renamed into place when complete; an --out that is the same file as an input is refused (2).");
+             "cannot give a calibration (the message says why). An --out that is the same file as an input is refused "
+             "(2).") + "\n" + headingd::cli::kFileRules);
   return cli::parseCommandLine(app, argc, argv);  // exit code 2 for every bad argument, as the footer says
 }
 

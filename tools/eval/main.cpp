@@ -32,8 +32,8 @@ int main(int argc, char** argv) {
   app.add_option("--reference", reference_path,
                  "reference CSV with ref_w,ref_x,ref_y,ref_z (sensor to ENU) and moving, e.g. a BROAD trial")
       ->required();
-  app.footer("Exit codes: 0 scored (or nothing to score: see \"reason\"), 1 a file cannot be read, is malformed, or "
-             "the two files' row counts differ, 2 bad arguments.");
+  app.footer(std::string("Exit codes: 0 scored (or nothing to score: see \"reason\"), 1 a file cannot be read, is malformed, or "
+             "the two files' row counts differ, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {

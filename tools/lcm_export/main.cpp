@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   app.add_option("--channel", options.channels,
                  "export only this channel (exact name; repeat it or give a comma-separated list; default: all)")
       ->delimiter(',');
-  app.footer(kFooter);
+  app.footer(std::string(kFooter) + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
   options.log_path = log_path;
   options.out_dir = out_dir;

@@ -71,8 +71,8 @@ int main(int argc, char** argv) {
       ->required();
   app.add_flag("--keep-comments", keep_comments, "feed '#' lines to the parser instead of stripping them");
   app.add_option("--max-line", max_line, "longest line accepted, '$' through checksum")->check(CLI::Range(4, 4096));
-  app.footer("Exit codes: 0 the whole file was parsed (what the parser could not use is in the counters), 1 FILE "
-             "cannot be read (missing, a directory, a FIFO or a device), 2 bad arguments.");
+  app.footer(std::string("Exit codes: 0 the whole file was parsed (what the parser could not use is in the counters), 1 FILE "
+             "cannot be read (missing, a directory, a FIFO or a device), 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   // A regular file only: a directory, a FIFO or a device is refused (input_file.hpp); the

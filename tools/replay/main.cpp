@@ -88,8 +88,8 @@ int main(int argc, char** argv) {
                  "turns and the raw one does not, e.g. the magnet it was made for is gone) and taken back when "
                  "it fits again");
   app.add_option("--wmm", wmm_path, "World Magnetic Model coefficients (NOAA COF)")->capture_default_str();
-  app.footer("Exit codes: 0 replayed and written, 1 an input cannot be read or is malformed, or an output cannot be "
-             "written (the message names the file), 2 bad arguments (also an output that is an input).");
+  app.footer(std::string("Exit codes: 0 replayed and written, 1 an input cannot be read or is malformed, or an output cannot be "
+             "written (the message names the file), 2 bad arguments (also an output that is an input).") + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {

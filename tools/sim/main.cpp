@@ -111,8 +111,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--talker", c.talker, "NMEA talker id: GP or GN")->capture_default_str();
   app.add_option("--cof", cof, "WMM coefficient file (NOAA COF)")->capture_default_str();
-  app.footer(scenarioList() + "Exit codes: 0 written, 1 file error, 2 bad arguments. Each file is written to a temporary file in "
-             "--out-dir and renamed into place when complete.");
+  app.footer(scenarioList() + "Exit codes: 0 written, 1 file error, 2 bad arguments.\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {

@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
                        "turn the first sample's accelerometer and magnetometer by this angle (about an axis drawn "
                        "from the seed): the estimator starts that far off");
   common(simulate);
-  app.footer("Exit codes: 0 done, 1 an input cannot be read or a trace cannot be written, 2 bad arguments.");
+  app.footer(std::string("Exit codes: 0 done, 1 an input cannot be read or a trace cannot be written, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {

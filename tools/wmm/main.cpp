@@ -85,8 +85,8 @@ int main(int argc, char** argv) {
   app.add_option("--alt-km", height_km, "height above the WGS-84 ellipsoid in km")->required();
   app.add_option("--date", date, "UTC date, YYYY-MM-DD")->required();
   app.add_option("--cof", cof, "WMM coefficient file in NOAA's COF layout")->capture_default_str();
-  app.footer("Exit codes: 0 done (a \"warning\" field flags a date or height outside the model's validity),\n"
-             "1 coefficient file unreadable or malformed, 2 bad arguments.");
+  app.footer(std::string("Exit codes: 0 done (a \"warning\" field flags a date or height outside the model's validity),\n"
+             "1 coefficient file unreadable or malformed, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   double decimal_year = 0.0;

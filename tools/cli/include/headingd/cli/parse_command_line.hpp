@@ -11,6 +11,14 @@ namespace headingd::cli {
 // The exit status of every tool for a bad or missing argument.
 inline constexpr int kExitBadArguments = 2;
 
+// What every tool does with files (files/input_file.hpp, files/output_file.hpp), for the end
+// of each --help footer.
+inline constexpr const char* kFileRules =
+    "Files: inputs must be regular files (a FIFO, a device or a directory is refused) within a size limit "
+    "by kind: TOML configuration and calibration 1 MiB, WMM coefficients 4 MiB, DBC 16 MiB, NMEA captures read "
+    "whole 1 GiB (gzip: the inflated text); CSV and log lines up to 1 MiB each. Outputs are written to a "
+    "temporary file in the same folder and renamed into place when complete.";
+
 // Parses; returns the status to exit with when the program must stop here (0 after --help or
 // --version, kExitBadArguments after printing what is wrong), nothing when it goes on.
 inline std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv) {
