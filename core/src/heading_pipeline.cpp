@@ -79,7 +79,28 @@ std::size_t HeadingPipeline::compassMinSamples(std::int64_t gps_t_ns) const {
   return static_cast<std::size_t>(std::max(1.0, 0.5 * interval_s / period_s));
 }
 
-void HeadingPipeline::processGps(const GpsObservation& gps) {
+const char* gpsObservationProblem(const GpsObservation& gps) {
+  const auto finite = [](const std::optional<double>& v) { return !v || std::isfinite(*v); };
+  if (const auto& p = gps.position) {
+    if (!(std::fabs(p->latitude_deg) <= 90.0)) return "latitude outside [-90, 90] degrees";
+    if (!(std::fabs(p->longitude_deg) <= 180.0)) return "longitude outside [-180, 180] degrees";
+    if (!std::isfinite(p->height_km)) return "height not finite";
+  }
+  if (!finite(gps.decimal_year)) return "date not finite";
+  if (!finite(gps.course_rad)) return "course not finite";
+  if (!finite(gps.speed_mps) || (gps.speed_mps && *gps.speed_mps < 0.0)) return "speed not finite or negative";
+  if (!finite(gps.hdop) || (gps.hdop && *gps.hdop < 0.0)) return "hdop not finite or negative";
+  if (gps.magvar_rad && !(std::fabs(*gps.magvar_rad) <= std::numbers::pi)) {
+    return "magnetic variation not within [-180, 180] degrees";
+  }
+  return nullptr;
+}
+
+bool HeadingPipeline::processGps(const GpsObservation& gps) {
+  if (gpsObservationProblem(gps) != nullptr) {
+    ++gps_epochs_rejected_;
+    return false;
+  }
   if (gps.fix_ok && gps.position && gps.decimal_year && wmm_ != nullptr) {
     const MagneticFieldElements field = wmm_->field(*gps.position, *gps.decimal_year);
     constexpr double kRad = std::numbers::pi / 180.0;
@@ -106,6 +127,7 @@ void HeadingPipeline::processGps(const GpsObservation& gps) {
   }
   updateDeclination();
   updateOutput();
+  return true;
 }
 
 void HeadingPipeline::updateDeclination() {

@@ -17,8 +17,8 @@ std::unique_ptr<SourceConfig> parseCandumpLogSource(const SourceTable& table) {
   auto c = std::make_unique<CandumpLogSourceConfig>();
   core::TomlTableReader candump(&table.table, table.source, "candump_log");
   c->enabled = candump.boolean("enabled", false);
-  c->path = readablePath(candump, "path", "", table.base_dir, c->enabled);
-  c->can_config_path = readablePath(candump, "can_config", "", table.base_dir, c->enabled);
+  c->path = readablePath(candump, "path", "", table.base_dir, c->enabled, files::kWholeLogLimit);
+  c->can_config_path = readablePath(candump, "can_config", "", table.base_dir, c->enabled, files::kConfigFileLimit);
   if (c->enabled) {
     if (c->path.empty()) candump.fail("path", "expected the candump -l log to play (the source is enabled)");
     if (c->can_config_path.empty()) {
@@ -56,7 +56,7 @@ CandumpLogSource::CandumpLogSource(std::string name, const CandumpLogSourceConfi
   {
     // Read whole (a 10 min, 100 Hz log is ~10 MB of text, ~6 MB of frames) so that playing
     // never touches the disk and --check-config sees every line.
-    std::istringstream text(files::readMaybeGzipFile(config.path));
+    std::istringstream text(files::readMaybeGzipFile(config.path, files::kWholeLogLimit));
     can::CandumpReader reader(text);
     while (const std::optional<can::CanFrame> frame = reader.next()) frames_.push_back(*frame);
     reader_counters_ = reader.counters();

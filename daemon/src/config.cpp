@@ -2,12 +2,11 @@
 #include "headingd/core/toml_document.hpp"
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <toml++/toml.h>
 
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/readable_path.hpp"
+#include "headingd/files/input_file.hpp"
 #include "headingd/daemon/source_registry.hpp"
 
 namespace headingd::daemon {
@@ -42,8 +41,8 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   c.imu_timeout_s = daemon.number("imu_timeout_s", c.imu_timeout_s, 0.01, 60.0, "s");
   c.status_period_s = daemon.number("status_period_s", c.status_period_s, 0.1, 60.0, "s");
   c.console_status = daemon.boolean("console_status", c.console_status);
-  c.wmm_path = readablePath(daemon, "wmm", c.wmm_path, base_dir, true);
-  c.calibration_path = readablePath(daemon, "calibration", c.calibration_path, base_dir, true);
+  c.wmm_path = readablePath(daemon, "wmm", c.wmm_path, base_dir, true, files::kWmmFileLimit);
+  c.calibration_path = readablePath(daemon, "calibration", c.calibration_path, base_dir, true, files::kConfigFileLimit);
   daemon.rejectUnknownKeys();
 
   TomlTableReader log(doc["log"].as_table(), source, "log");
@@ -99,14 +98,16 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
 }
 
 DaemonConfig loadDaemonConfig(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw core::ConfigError(path + ": cannot open the configuration file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text;
+  try {
+    text = files::readWholeFile(path, files::kConfigFileLimit);
+  } catch (const files::FileError& e) {
+    throw core::ConfigError(std::string(e.what()) + " (the configuration file)");
+  }
   std::error_code ec;
   const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
   const std::string base_dir = ec ? std::string() : absolute.parent_path().string();
-  return parseDaemonConfig(text.str(), path, base_dir);
+  return parseDaemonConfig(text, path, base_dir);
 }
 
 }  // namespace headingd::daemon

@@ -34,9 +34,10 @@ bool hasLiveSource(const SourceConfigs& configs) {
 }  // namespace
 
 Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
+  calibration_ = loadCalibration(config_.calibration_path);
   if (!config_.wmm_path.empty()) {
     wmm_ = std::make_unique<core::WorldMagneticModel>(
-        core::parseWmmCoefficients(files::readMaybeGzipFile(config_.wmm_path), config_.wmm_path));
+        core::parseWmmCoefficients(files::readMaybeGzipFile(config_.wmm_path, files::kWmmFileLimit), config_.wmm_path));
   }
   // Each source gets its own rings (single producer each); see daemon/README.md, "Sources".
   const SourceConfigs& configs = config_.sources;
@@ -100,7 +101,8 @@ void Daemon::start() {
   for (auto& r : gps_rings_) gps.push_back(r.get());
   std::vector<Source*> sources;
   for (auto& s : sources_) sources.push_back(s.get());
-  loop_ = std::make_unique<EstimatorLoop>(config_, wmm_.get(), imu, gps, sources, *publisher_, notifier_);
+  loop_ = std::make_unique<EstimatorLoop>(config_, wmm_.get(), imu, gps, sources, *publisher_, notifier_,
+                                          std::move(calibration_));
   startRecorder();
   if (recorder_ != nullptr) loop_->setRecorder(recorder_sinks_[2].get(), recorder_.get());
   loop_thread_ = std::thread([this] { loop_->run(); });

@@ -14,13 +14,14 @@
 #include "headingd/daemon/realtime.hpp"
 
 namespace headingd::daemon {
-namespace {
 
-// [daemon] calibration: none when none is configured; a bad file throws (start-up stops).
 core::CalibratedImuStream loadCalibration(const std::string& path) {
   if (path.empty()) return core::CalibratedImuStream{};
-  return core::CalibratedImuStream(core::parseImuCalibration(files::readMaybeGzipFile(path), path));
+  return core::CalibratedImuStream(
+      core::parseImuCalibration(files::readMaybeGzipFile(path, files::kConfigFileLimit), path));
 }
+
+namespace {
 
 // One source's samples come in order; several sources are merged by sensor time, ties by
 // arrival (std::sort: no temporary buffer, unlike stable_sort).
@@ -38,10 +39,11 @@ bool gpsByTime(const GpsRingEntry& a, const GpsRingEntry& b) {
 EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagneticModel* wmm,
                              std::vector<SampleRing<ImuRingEntry>*> imu_rings,
                              std::vector<SampleRing<GpsRingEntry>*> gps_rings, std::vector<Source*> sources,
-                             LcmPublisher& publisher, SystemdNotifier& notifier)
+                             LcmPublisher& publisher, SystemdNotifier& notifier,
+                             core::CalibratedImuStream calibration)
     : config_(config),
       pipeline_(config.estimator, wmm),
-      correction_(loadCalibration(config.calibration_path)),
+      correction_(std::move(calibration)),
       imu_rings_(std::move(imu_rings)),
       gps_rings_(std::move(gps_rings)),
       sources_(std::move(sources)),
@@ -51,6 +53,7 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
       imu_timeout_ns_(static_cast<std::int64_t>(config.imu_timeout_s * 1e9)),
       status_period_ns_(static_cast<std::int64_t>(config.status_period_s * 1e9)),
       rejected_log_(config.log.repeat_burst, config.log.repeat_interval_s),
+      gps_rejected_log_(config.log.repeat_burst, config.log.repeat_interval_s),
       drop_log_(config.log.repeat_burst, config.log.repeat_interval_s),
       miss_log_(config.log.repeat_burst, config.log.repeat_interval_s) {
   std::size_t imu_capacity = 0, gps_capacity = 0;
@@ -262,7 +265,11 @@ void EstimatorLoop::processImu(const ImuRingEntry& raw, std::int64_t utime_us) {
 
 void EstimatorLoop::processGps(const GpsRingEntry& e, std::int64_t utime_us) {
   if (recorder_ != nullptr) recorder_->gpsPlaced(e.observation.t_ns, imu_processed_);
-  pipeline_.processGps(e.observation);
+  std::uint64_t suppressed = 0;
+  if (!pipeline_.processGps(e.observation) && gps_rejected_log_.allow(e.arrival_mono_ns, &suppressed)) {
+    spdlog::warn("GPS epoch from {} rejected: {} ({} rejected so far, {} not logged)", source_names_[e.source_index],
+                 core::gpsObservationProblem(e.observation), pipeline_.gpsEpochsRejected(), suppressed);
+  }
   ++gps_epochs_processed_;
   if (config_.lcm.publish_gps) {
     fillGps(gps_msg_, e.observation, source_names_[e.source_index], utime_us);
@@ -333,6 +340,7 @@ LoopCounters EstimatorLoop::loopCounters() const {
   c.gps_epochs = gps_epochs_processed_;
   c.gps_epochs_used_for_declination = pipeline_.gpsEpochsUsedForDeclination();
   c.gps_epochs_forced_out = gps_epochs_forced_;
+  c.gps_epochs_rejected = pipeline_.gpsEpochsRejected();
   return c;
 }
 

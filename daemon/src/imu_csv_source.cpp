@@ -17,9 +17,9 @@ std::unique_ptr<SourceConfig> parseImuCsvSource(const SourceTable& table) {
   auto c = std::make_unique<ImuCsvSourceConfig>();
   core::TomlTableReader csv(&table.table, table.source, "imu_csv");
   c->enabled = csv.boolean("enabled", c->enabled);
-  c->imu_csv_path = readablePath(csv, "path", "", table.base_dir, c->enabled);
+  c->imu_csv_path = readablePath(csv, "path", "", table.base_dir, c->enabled, 0);
   if (c->enabled && c->imu_csv_path.empty()) csv.fail("path", "expected the IMU CSV file to play (the source is enabled)");
-  c->nmea_path = readablePath(csv, "nmea", "", table.base_dir, c->enabled);
+  c->nmea_path = readablePath(csv, "nmea", "", table.base_dir, c->enabled, files::kWholeLogLimit);
   c->nmea_first_epoch_t_s = csv.number("nmea_first_epoch_t_s", 0.0, -1e9, 1e9, "s");
   c->speed = csv.number("speed", c->speed, 0.01, 1000.0, "x real time");
   c->start_delay_s = csv.number("start_delay_s", c->start_delay_s, 0.0, 3600.0, "s");

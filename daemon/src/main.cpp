@@ -67,14 +67,28 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", log_level, "override [log] level")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   app.set_version_flag("--version", std::string("headingd ") + HEADINGD_VERSION);
-  CLI11_PARSE(app, argc, argv);
+  app.footer("Exit status: 0 stopped by SIGINT/SIGTERM or at the end of the played logs (or --check-config: good), "
+             "1 start-up failed after the checks (e.g. LCM cannot open), 2 bad command line, configuration or file "
+             "it names (the unit does not restart then). A SIGTERM while the files are read at start-up ends the "
+             "process at once (killed by the signal).");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // One status for any bad option (not CLI11's own 100..114), the one the unit does not restart on.
+    return app.exit(e) == 0 ? kExitOk : kExitBadConfig;
+  }
 
-  // Signals are taken synchronously by this thread (sigtimedwait below); blocked before any
-  // thread starts, so every thread inherits the mask and none is interrupted by them.
-  sigset_t signals;
-  sigemptyset(&signals);
-  for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&signals, s);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  // Signals are taken synchronously by this thread (sigtimedwait below), blocked before any
+  // thread starts, so every thread inherits the mask and none is interrupted by them. During
+  // the checks of start-up (one thread only) SIGINT and SIGTERM keep their default action, so
+  // a start-up held up by a slow file still ends at once; SIGHUP waits until the daemon runs.
+  sigset_t hangup;
+  sigemptyset(&hangup);
+  sigaddset(&hangup, SIGHUP);
+  pthread_sigmask(SIG_BLOCK, &hangup, nullptr);
+  sigset_t signals = hangup;
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
 
   DaemonConfig config;
   try {
@@ -85,6 +99,7 @@ int main(int argc, char** argv) {
     return kExitBadConfig;
   }
 
+  // Every check of start-up, --check-config or not (daemon.hpp).
   std::unique_ptr<Daemon> daemon;
   try {
     daemon = std::make_unique<Daemon>(config);
@@ -101,6 +116,7 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
 
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);  // before the first thread
   try {
     daemon->start();
   } catch (const std::exception& e) {

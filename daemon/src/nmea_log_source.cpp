@@ -26,7 +26,7 @@ std::unique_ptr<SourceConfig> parseNmeaLogSource(const SourceTable& table) {
   auto c = std::make_unique<NmeaLogSourceConfig>();
   core::TomlTableReader nmea_log(&table.table, table.source, "nmea_log");
   c->enabled = nmea_log.boolean("enabled", false);
-  c->path = readablePath(nmea_log, "path", "", table.base_dir, c->enabled);
+  c->path = readablePath(nmea_log, "path", "", table.base_dir, c->enabled, files::kWholeLogLimit);
   if (c->enabled && c->path.empty()) nmea_log.fail("path", "expected the NMEA log to play (the source is enabled)");
   c->time_offset_s = nmea_log.number("time_offset_s", 0.0, -1e9, 1e9, "s");
   nmea_log.rejectUnknownKeys();

@@ -53,20 +53,20 @@ std::vector<std::pair<std::string, std::string>> recordingFiles(const DaemonConf
   std::vector<std::pair<std::string, std::string>> files;
   toml::table doc = core::parseTomlDocument(config.text, config.source);
   std::string copies;  // for the header: which copies there are
-  const auto copy = [&](std::string_view name, const std::string& path) {
-    files.emplace_back(std::string(name), files::readMaybeGzipFile(path));
+  const auto copy = [&](std::string_view name, const std::string& path, std::uint64_t limit) {
+    files.emplace_back(std::string(name), files::readMaybeGzipFile(path, limit));
     copies += "\"" + std::string(name) + "\" = \"" + path + "\"\n";
   };
   if (!config.wmm_path.empty()) {
-    copy(kWmmFile, config.wmm_path);
+    copy(kWmmFile, config.wmm_path, files::kWmmFileLimit);
     set(doc, "daemon", "wmm", kWmmFile);
   }
   if (!config.calibration_path.empty()) {
-    copy(kCalibrationFile, config.calibration_path);
+    copy(kCalibrationFile, config.calibration_path, files::kConfigFileLimit);
     set(doc, "daemon", "calibration", kCalibrationFile);
   }
   if (const auto* can = config.sources.find<CanSourceConfig>(); can != nullptr && can->enabled) {
-    copy(kDbcFile, can->can.dbc_path);
+    copy(kDbcFile, can->can.dbc_path, files::kDbcFileLimit);
     set(doc, "can", "dbc", kDbcFile);
   }
   files.emplace_back(std::string(kOriginalConfigFile), config.text);

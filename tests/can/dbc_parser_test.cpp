@@ -105,6 +105,11 @@ TEST(DbcParser, ErrorsNameLineAndExpectation) {
   expectError("CM_ \"open\n", "expected a closing '\"'");
   expectError("BU_: X\n SG_ S : 0|8@1+ (1,0) [0|0] \"\" X\n", "bad.dbc:2: expected SG_ lines directly after their BO_");
   expectError("BO_ 12 A: 8 X\n SG_ S : 0|8@1+ (0,0) [0|0] \"\" X\n", "non-zero factor");
+  // A factor or offset that is not finite would turn every decoded value into nan or inf,
+  // and every sample would be rejected: the file is refused instead.
+  expectError("BO_ 12 A: 8 X\n SG_ S : 0|8@1+ (nan,0) [0|0] \"\" X\n", "bad.dbc:2: expected a finite, non-zero factor");
+  expectError("BO_ 12 A: 8 X\n SG_ S : 0|8@1+ (inf,0) [0|0] \"\" X\n", "bad.dbc:2: expected a finite, non-zero factor");
+  expectError("BO_ 12 A: 8 X\n SG_ S : 0|8@1+ (1,-nan) [0|0] \"\" X\n", "bad.dbc:2: expected a finite offset");
 }
 
 TEST(DbcParser, ShippedFilesParse) {

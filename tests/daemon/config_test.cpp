@@ -1,11 +1,14 @@
 // Configuration errors name file:line, the key and what was expected; shipped files parse.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include "daemon_test_support.hpp"
 #include "headingd/daemon/candump_log_source.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/imu_csv_source.hpp"
 #include "headingd/daemon/nmea_log_source.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -97,11 +100,32 @@ TEST_F(DaemonConfigErrors, EstimatorTableKeepsItsLineNumbers) {
 
 TEST_F(DaemonConfigErrors, MissingFileNamesThePath) {
   const std::string e = errorOf(dir, "[imu_csv]\nenabled = true\npath = \"nope.csv\"\n");
-  EXPECT_NE(e.find(at(3) + "[imu_csv] path: cannot open '" + dir.file("nope.csv") + "'"), std::string::npos) << e;
+  EXPECT_NE(e.find(at(3) + "[imu_csv] path: " + dir.file("nope.csv") + ": cannot open: No such file or directory"),
+            std::string::npos)
+      << e;
   const std::string none = errorOf(dir, "[imu_csv]\nenabled = true\n");
   EXPECT_NE(none.find("[imu_csv] path: expected the IMU CSV file"), std::string::npos) << none;
   const std::string wmm = errorOf(dir, "[daemon]\nwmm = \"/nonexistent/WMM.COF\"\n");
-  EXPECT_NE(wmm.find(at(2) + "[daemon] wmm: cannot open"), std::string::npos) << wmm;
+  EXPECT_NE(wmm.find(at(2) + "[daemon] wmm: /nonexistent/WMM.COF: cannot open"), std::string::npos) << wmm;
+}
+
+TEST_F(DaemonConfigErrors, WhatIsNoRegularFileOrTooLargeIsRefusedNamingTheKey) {
+  // Each was accepted: /dev/zero was then read until the OOM killer acted, a FIFO hung.
+  const std::string zero = errorOf(dir, "[daemon]\nwmm = \"/dev/zero\"\n");
+  EXPECT_NE(zero.find(at(2) + "[daemon] wmm: /dev/zero: is a character device, not a regular file"), std::string::npos)
+      << zero;
+  ASSERT_EQ(::mkfifo(dir.file("fifo.log").c_str(), 0600), 0);
+  const std::string fifo = errorOf(dir, "[candump_log]\nenabled = true\npath = \"fifo.log\"\ncan_config = \"x\"\n");
+  EXPECT_NE(fifo.find(at(3) + "[candump_log] path: " + dir.file("fifo.log") + ": is a FIFO"), std::string::npos) << fifo;
+  const std::string folder = errorOf(dir, "[imu_csv]\nenabled = true\npath = \".\"\n");
+  EXPECT_NE(folder.find("[imu_csv] path: " + dir.file(".") + ": is a directory, not a file"), std::string::npos)
+      << folder;
+  dir.write("huge.toml", std::string(files::kConfigFileLimit + 1, '#'));
+  const std::string huge = errorOf(dir, "[daemon]\ncalibration = \"huge.toml\"\n");
+  EXPECT_NE(huge.find(at(2) + "[daemon] calibration: " + dir.file("huge.toml") +
+                      ": is 1048577 bytes, more than the 1 MiB such a file may have"),
+            std::string::npos)
+      << huge;
 }
 
 TEST_F(DaemonConfigErrors, ChannelsMustDifferAndBeNames) {
@@ -188,7 +212,8 @@ TEST_F(DaemonConfigErrors, LogSourcesNameTheirKeys) {
   const std::string no_can = errorOf(dir, "[candump_log]\nenabled = true\npath = \"can.log\"\n");
   EXPECT_NE(no_can.find("[candump_log] can_config: expected a file with the [can] table"), std::string::npos) << no_can;
   const std::string missing = errorOf(dir, "[nmea_log]\nenabled = true\npath = \"none.nmea\"\n");
-  EXPECT_NE(missing.find(at(3) + "[nmea_log] path: cannot open"), std::string::npos) << missing;
+  EXPECT_NE(missing.find(at(3) + "[nmea_log] path: " + dir.file("none.nmea") + ": cannot open"), std::string::npos)
+      << missing;
   EXPECT_NE(errorOf(dir, "[playback]\nspeed = 0\n").find(at(2) + "[playback] speed: 0 is out of range"),
             std::string::npos);
   EXPECT_NE(errorOf(dir, "[playback]\nat_end = \"loop\"\n").find(at(2) + "[playback] at_end: 'loop' is not one of"),

@@ -89,6 +89,14 @@ TEST(Sentences, RmcWestVariationIsNegative) {
   EXPECT_EQ(*r.mode_indicator, 'S');
 }
 
+TEST(Sentences, RmcVariationBeyond180DegreesIsNotUsedAndCounted) {
+  // A variation is 0..180 degrees east or west; 200 would put the declination 20 degrees off.
+  const auto d = decodeOk("GPRMC,125106,A,3854.5087,N,07726.4523,W,0.0,0.0,241011,200.0,E,A");
+  EXPECT_FALSE(std::get<Rmc>(d.data).magvar_deg);
+  EXPECT_EQ(d.invalid_fields, 1);
+  EXPECT_DOUBLE_EQ(*decodeAs<Rmc>("GPRMC,125106,A,3854.5087,N,07726.4523,W,0.0,0.0,241011,180.0,W,A").magvar_deg, -180.0);
+}
+
 TEST(Sentences, RmcVersionsByFieldCount) {
   // NMEA 2.0 (no mode indicator), 2.3 (mode), 4.1 (mode + navigation status).
   EXPECT_FALSE(decodeAs<Rmc>("GPRMC,005947.00,A,3715.6616,N,12157.6709,W,0.0,0.0,080710,,").mode_indicator);

@@ -63,8 +63,8 @@ TEST_F(CsvFiles, ReadsABroadFilePlainAndGzip) {
 TEST_F(CsvFiles, GzipAndPlainGiveTheSameBytes) {
   std::string big = "a,b\n";
   for (int i = 0; i < 20000; ++i) big += std::to_string(i) + "," + std::to_string(i * 0.5) + "\n";
-  EXPECT_EQ(readMaybeGzipFile(writeGzip("big.gz", big)), big);
-  EXPECT_EQ(readMaybeGzipFile(writePlain("big.csv", big)), big);
+  EXPECT_EQ(readMaybeGzipFile(writeGzip("big.gz", big), kDbcFileLimit), big);
+  EXPECT_EQ(readMaybeGzipFile(writePlain("big.csv", big), kDbcFileLimit), big);
   const NumericCsv csv = readNumericCsv(writeGzip("big2.gz", big), {"b", "a"});
   ASSERT_EQ(csv.rows, 20000u);
   EXPECT_EQ(csv.column("a")[19999], 19999.0);
@@ -175,7 +175,7 @@ TEST_F(CsvFiles, MissingFileIsAnError) {
   ASSERT_NE(m, "");
   EXPECT_NE(m.find(path), std::string::npos) << m;
   EXPECT_NE(m.find("cannot open"), std::string::npos) << m;
-  EXPECT_THROW(readMaybeGzipFile(path), CsvError);
+  EXPECT_THROW(readMaybeGzipFile(path, kConfigFileLimit), CsvError);
 }
 
 TEST_F(CsvFiles, ReadNumericCsvOptionalColumns) {

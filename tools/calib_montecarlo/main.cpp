@@ -1,7 +1,6 @@
 // headingd-calib-montecarlo: Kok & Schön (2016) §8 reproduced. Per run: draw the sensor of
 // Table 2, simulate 100 still + rotating samples, calibrate with Algorithm 1's initial
 // estimate and with the ML refinement, and score both by the heading RMSE (Fig. 8).
-#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -10,10 +9,13 @@
 #include <fstream>
 #include <iostream>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "headingd/cli/parse_command_line.hpp"
+#include "headingd/files/output_file.hpp"
 #include "headingd/calib/calibration_error.hpp"
 #include "headingd/calib/ml/ml_calibration.hpp"
 #include "headingd/calib_montecarlo/ks_simulation.hpp"
@@ -143,19 +145,18 @@ int main(int argc, char** argv) {
                  "known: the calibration is told the simulated dip, its sign and value (as headingd-calibrate is by "
                  "the WMM at --lat/--lon/--date); unknown: it is not (eq. 27's best minimum, one ML start)")
       ->check(CLI::IsMember({"known", "unknown"}));
-  CLI11_PARSE(app, argc, argv);
+  app.footer(std::string("Exit codes: 0 done, 1 --require-ml-better not met, 2 bad arguments or --out cannot be written (it is "
+             "written at the end, through a temporary file renamed into place).") + "\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
   g_place_known = place == "known";
   g_decimation = decimation;
 
   const calib_montecarlo::KsVariant variant = calib_montecarlo::parseVariant(variant_name);
   const calib_montecarlo::KsNoiseScale noise{noise_factor, table_reading == "sigma"};
-  std::ofstream csv;
-  if (!out_path.empty()) {
-    csv.open(out_path);
-    if (!csv) {
-      std::cerr << "cannot write " << out_path << "\n";
-      return 2;
-    }
+  // Collected here and written whole at the end, through a temporary file renamed into place.
+  std::ostringstream csv;
+  const bool write_csv = !out_path.empty();
+  if (write_csv) {
     csv << "run,seed,heading_rmse_initial_deg,heading_rmse_ml_deg,ml_better,cost_initial,cost_final,iterations,"
            "ml_seconds,converged,D_error_initial,D_error_ml,offset_error_initial_uT,offset_error_ml_uT,"
            "dip_error_initial_deg,dip_error_ml_deg,gyro_bias_error_initial_deg_s,gyro_bias_error_ml_deg_s,error\n";
@@ -184,7 +185,7 @@ int main(int argc, char** argv) {
                     e1 < e0 ? "" : "  (ML not better)");
         std::fflush(stdout);  // a long study shows its progress when its output goes to a file
       }
-      if (csv) {
+      if (write_csv) {
         csv << i << ',' << run_seed << ',' << e0 << ',' << e1 << ',' << (e1 < e0 ? 1 : 0) << ',' << r.cost_initial << ','
             << r.cost_final << ',' << r.iterations << ',' << seconds << ',' << (r.converged ? 1 : 0) << ','
             << (r.initial.D - truth.mag_D).norm() << ',' << (r.D - truth.mag_D).norm() << ','
@@ -196,7 +197,16 @@ int main(int argc, char** argv) {
     } catch (const calib::CalibrationError& e) {
       ++failures;
       if (!quiet) std::printf("run %3d seed %llu: calibration failed: %s\n", i, static_cast<unsigned long long>(run_seed), e.what());
-      if (csv) csv << i << ',' << run_seed << ",nan,nan,0,nan,nan,0,nan,0,nan,nan,nan,nan,nan,nan,nan,nan,\"" << e.what() << "\"\n";
+      if (write_csv) csv << i << ',' << run_seed << ",nan,nan,0,nan,nan,0,nan,0,nan,nan,nan,nan,nan,nan,nan,nan,\"" << e.what() << "\"\n";
+    }
+  }
+
+  if (write_csv) {
+    try {
+      files::writeWholeOutputFile(out_path, csv.str());
+    } catch (const std::exception& e) {
+      std::cerr << "headingd-calib-montecarlo: " << e.what() << "\n";
+      return 2;
     }
   }
 

@@ -2,7 +2,6 @@
 // headingd-replay --calib and the daemon apply. The methods (--method thesis, ellipsoid, ml)
 // are described in headingd/calibrate/methods.hpp.
 // Exit codes: 0 written, 1 file error, 2 bad arguments, 3 the data cannot give a calibration.
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -13,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/calib/dip_sign.hpp"
 #include "headingd/calibrate/methods.hpp"
 #include "headingd/calibrate/progress.hpp"
@@ -22,6 +22,7 @@
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/output_file.hpp"
 
 namespace {
 
@@ -73,16 +74,11 @@ std::optional<int> parseArguments(int argc, char** argv, Arguments& a) {
                  "(ellipsoid and ml; it picks between the mirror solutions of the misalignment step)");
   app.add_option("--first-sample", a.first, "first row used (0-based)");
   app.add_option("--end-sample", a.end, "one past the last row used (default: all)");
-  app.footer("Without --field-uT or --lat/--lon/--date the field norm is taken from the data (D scaled to unit "
+  app.footer(std::string("Without --field-uT or --lat/--lon/--date the field norm is taken from the data (D scaled to unit "
              "determinant) and the file says so. Exit codes: 0 written, 1 file error, 2 bad arguments, 3 the data "
-             "cannot give a calibration (the message says why).");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);          // prints the help or the message
-    return code == 0 ? 0 : kBadArguments;  // exit code 2 for every bad argument, as the footer says
-  }
-  return std::nullopt;
+             "cannot give a calibration (the message says why). An --out that is the same file as an input is refused "
+             "(2).") + "\n" + headingd::cli::kFileRules);
+  return cli::parseCommandLine(app, argc, argv);  // exit code 2 for every bad argument, as the footer says
 }
 
 // The checks across options that CLI11 does not make; false (after a message) for bad ones.
@@ -123,7 +119,7 @@ bool fieldFromArguments(const Arguments& a, calibrate::FieldNorm& field) {
       std::fprintf(stderr, "headingd-calibrate: --date: expected YYYY-MM-DD, got '%s'\n", a.date.c_str());
       return false;
     }
-    const core::WorldMagneticModel wmm(core::parseWmmCoefficients(files::readMaybeGzipFile(a.wmm_path), a.wmm_path));
+    const core::WorldMagneticModel wmm(core::parseWmmCoefficients(files::readMaybeGzipFile(a.wmm_path, files::kWmmFileLimit), a.wmm_path));
     const auto e = wmm.field({*a.lat, *a.lon, 0.0}, core::decimalYear(y, m, d));
     field.norm_uT = e.f_nT / 1000.0;
     field.dip_rad = e.inclination_deg * kDeg;
@@ -157,12 +153,7 @@ void runMethod(const Arguments& a, std::span<const core::ImuSample> samples, cal
 // Writes the calibration TOML and, with --report, the HTML report; throws on a write error.
 void writeOutputs(const Arguments& a, std::span<const core::ImuSample> samples, const core::ImuCalibration& cal,
                   calibrate::ReportInput& report) {
-  {
-    std::ofstream f(a.out, std::ios::binary | std::ios::trunc);
-    f << core::formatImuCalibration(cal);
-    f.flush();
-    if (!f) throw std::runtime_error(a.out + ": cannot write");
-  }
+  files::writeWholeOutputFile(a.out, core::formatImuCalibration(cal));
   progress("wrote %s", a.out.c_str());
   if (a.report_dir.empty()) return;
   report.calibration = cal;
@@ -184,6 +175,13 @@ int main(int argc, char** argv) {
   Arguments a;
   if (const auto code = parseArguments(argc, argv, a)) return *code;
   if (!argumentsConsistent(a)) return kBadArguments;
+
+  try {
+    files::refuseOutputOverInputs({"--out", a.out}, {{"--imu-csv", a.imu_csv}, {"--wmm", a.wmm_path}});
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "headingd-calibrate: %s\n", e.what());
+    return kBadArguments;
+  }
 
   calibrate::FieldNorm field;
   std::vector<core::ImuSample> all;

@@ -1,14 +1,14 @@
 // headingd-candump-from-csv: IMU CSV -> candump -l log, through the DBC encoder of a [can]
 // configuration. The log plays onto a bus with `canplayer` and replays through headingd.
-#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iostream>
+#include <sstream>
 
+#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/can/candump_writer.hpp"
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/output_file.hpp"
 
 int main(int argc, char** argv) {
   using namespace headingd;
@@ -28,8 +28,17 @@ int main(int argc, char** argv) {
   app.add_option("--mag-every", mag_every, "write magnetometer frames on every n-th epoch only")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
-  CLI11_PARSE(app, argc, argv);
+  app.footer(std::string("Exit codes: 0 written, 1 an input cannot be read or is malformed, or --out cannot be written, 2 bad "
+             "arguments (also an --out that is an input). --out is written to a temporary file in its folder and "
+             "renamed into place when complete.") + "\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
+  try {
+    files::refuseOutputOverInputs({"--out", out_path}, {{"--imu-csv", imu_csv}, {"--can-config", can_config}});
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "headingd-candump-from-csv: %s\n", e.what());
+    return cli::kExitBadArguments;
+  }
   try {
     const can::CanSetup setup = can::loadCanSetup(can_config);
     const can::ImuFrameCodec codec(setup.config, setup.dbc);
@@ -46,11 +55,10 @@ int main(int argc, char** argv) {
                    "a receiver without counters will split epochs\n",
                    epoch_span_s, setup.config.epoch_window_s, can_config.c_str());
     }
-    std::ofstream out(out_path, std::ios::binary);
-    if (!out) throw std::runtime_error(out_path + ": cannot open for writing");
+    // Through a temporary file renamed into place (files/output_file.hpp).
+    std::ostringstream out;
     const can::CandumpWriteStats stats = can::writeCandumpLog(samples, codec, options, out);
-    out.close();
-    if (!out) throw std::runtime_error(out_path + ": write failed");
+    files::writeWholeOutputFile(out_path, out.str());
     std::fprintf(stdout, "{\"rows\":%zu,\"epochs\":%llu,\"frames\":%llu,\"clamped_values\":%llu}\n", samples.size(),
                  static_cast<unsigned long long>(stats.epochs), static_cast<unsigned long long>(stats.frames),
                  static_cast<unsigned long long>(stats.clamped_values));

@@ -1,23 +1,40 @@
 // headingd-eval: BROAD's RMSE of an estimate file against a reference file.
-#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 
+#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/core/orientation_error.hpp"
 #include "headingd/files/csv_row_reader.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
+namespace {
+
+// JSON has no nan or inf: a figure that does not exist is null.
+std::string jsonNumber(double value) {
+  if (!std::isfinite(value)) return "null";
+  char text[48];
+  std::snprintf(text, sizeof text, "%.4f", value);
+  return text;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace headingd;
-  CLI::App app{"Score estimates against a reference with BROAD's metric; prints one JSON object."};
+  CLI::App app{"Score estimates against a reference with BROAD's metric; prints one JSON object. With no row to "
+               "score (no reference row with moving = 1 and a finite quaternion) the RMSE figures are null and "
+               "\"reason\" says why."};
   std::string estimates_path, reference_path;
   app.add_option("--estimates", estimates_path, "headingd-replay output (t,qw,qx,qy,qz,...; q maps sensor to NED)")
       ->required();
   app.add_option("--reference", reference_path,
                  "reference CSV with ref_w,ref_x,ref_y,ref_z (sensor to ENU) and moving, e.g. a BROAD trial")
       ->required();
-  CLI11_PARSE(app, argc, argv);
+  app.footer(std::string("Exit codes: 0 scored (or nothing to score: see \"reason\"), 1 a file cannot be read, is malformed, or "
+             "the two files' row counts differ, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {
     // Both files row by row, in step (rows are paired by index): memory stays flat whatever
@@ -51,10 +68,13 @@ int main(int argc, char** argv) {
     }
     const auto result = rmse.rmse();
     constexpr double kDeg = 180.0 / std::numbers::pi;
-    std::printf(
-        "{\"total_rmse_deg\":%.4f,\"heading_rmse_deg\":%.4f,\"inclination_rmse_deg\":%.4f,\"samples\":%zu,"
-        "\"failed_samples\":%zu}\n",
-        result.total_rad * kDeg, result.heading_rad * kDeg, result.inclination_rad * kDeg, rmse.count(), failures);
+    const std::string reason =
+        rmse.count() == 0 ? ",\"reason\":\"no row to score: no reference row has moving = 1 and a finite quaternion\""
+                          : "";
+    std::printf("{\"total_rmse_deg\":%s,\"heading_rmse_deg\":%s,\"inclination_rmse_deg\":%s,\"samples\":%zu,"
+                "\"failed_samples\":%zu%s}\n",
+                jsonNumber(result.total_rad * kDeg).c_str(), jsonNumber(result.heading_rad * kDeg).c_str(),
+                jsonNumber(result.inclination_rad * kDeg).c_str(), rmse.count(), failures, reason.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-eval: %s\n", e.what());
     return 1;

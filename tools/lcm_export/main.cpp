@@ -1,10 +1,10 @@
 // headingd-lcm-export: an LCM log (lcm-logger) as one CSV table per channel, for pandas,
 // PlotJuggler or a spreadsheet.
-#include <CLI/CLI.hpp>
 #include <cinttypes>
 #include <cstdio>
 #include <exception>
 
+#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/lcm_export/log_export.hpp"
 
 namespace {
@@ -73,13 +73,8 @@ int main(int argc, char** argv) {
   app.add_option("--channel", options.channels,
                  "export only this channel (exact name; repeat it or give a comma-separated list; default: all)")
       ->delimiter(',');
-  app.footer(kFooter);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitUsage;
-  }
+  app.footer(std::string(kFooter) + "\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
   options.log_path = log_path;
   options.out_dir = out_dir;
 

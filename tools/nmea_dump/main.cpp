@@ -4,14 +4,18 @@
 // '#' comment lines (gpsd's capture files carry them; they were never on the wire) are
 // stripped here, before the parser, and counted as "comment_lines"; --keep-comments feeds
 // them to the parser like any other bytes.
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
+#include <optional>
+#include <unistd.h>
 #include <string>
 #include <vector>
 
+#include "headingd/cli/parse_command_line.hpp"
+#include "headingd/files/input_file.hpp"
 #include "headingd/nmea/comment_filter.hpp"
 #include "headingd/nmea/parser.hpp"
 
@@ -67,11 +71,17 @@ int main(int argc, char** argv) {
       ->required();
   app.add_flag("--keep-comments", keep_comments, "feed '#' lines to the parser instead of stripping them");
   app.add_option("--max-line", max_line, "longest line accepted, '$' through checksum")->check(CLI::Range(4, 4096));
-  CLI11_PARSE(app, argc, argv);
+  app.footer(std::string("Exit codes: 0 the whole file was parsed (what the parser could not use is in the counters), 1 FILE "
+             "cannot be read (missing, a directory, a FIFO or a device), 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    std::fprintf(stderr, "headingd-nmea-dump: cannot open %s\n", path.c_str());
+  // A regular file only: a directory, a FIFO or a device is refused (input_file.hpp); the
+  // capture is read in chunks, so its length does not matter.
+  std::optional<headingd::files::InputFile> in;
+  try {
+    in.emplace(path);
+  } catch (const headingd::files::FileError& e) {
+    std::fprintf(stderr, "headingd-nmea-dump: %s\n", e.what());
     return 1;
   }
   headingd::nmea::ParserConfig config;
@@ -80,9 +90,14 @@ int main(int argc, char** argv) {
   headingd::nmea::CommentFilter comments;
   std::vector<std::uint8_t> chunk(4096), filtered;
   std::vector<FixUpdate> updates;
-  while (in) {
-    in.read(reinterpret_cast<char*>(chunk.data()), static_cast<std::streamsize>(chunk.size()));
-    const auto n = static_cast<std::size_t>(in.gcount());
+  while (true) {
+    const ssize_t got = ::read(in->fd(), chunk.data(), chunk.size());
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      std::fprintf(stderr, "headingd-nmea-dump: %s: read error: %s\n", path.c_str(), std::strerror(errno));
+      return 1;
+    }
+    const auto n = static_cast<std::size_t>(got);
     if (n == 0) break;
     const std::span<const std::uint8_t> bytes(chunk.data(), n);
     updates.clear();

@@ -1,10 +1,11 @@
 // headingd-replay: runs the estimator over a recorded IMU CSV as fast as the CPU allows and
 // writes one estimate per input row. Reads, estimates and writes row by row
 // (headingd/replay/replay_loop.hpp), so memory stays flat whatever the input's length.
-#include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 
+#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/core/mag_calibration_fit.hpp"
@@ -13,6 +14,7 @@
 #include "headingd/files/imu_csv_reader.hpp"
 #include "headingd/files/nmea_epochs.hpp"
 #include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/output_file.hpp"
 #include "headingd/replay/replay_csv_writer.hpp"
 #include "headingd/replay/replay_loop.hpp"
 #include "headingd/replay/replay_report.hpp"
@@ -24,7 +26,24 @@ using namespace headingd;
 
 core::EstimatorParams loadParams(const std::string& path) {
   if (path.empty()) return {};
-  return core::parseEstimatorParams(files::readMaybeGzipFile(path), path);
+  return core::parseEstimatorParams(files::readMaybeGzipFile(path, files::kConfigFileLimit), path);
+}
+
+// Each output against every input, the other output and, with --recording, every file of the
+// recording folder.
+void refuseOverwritingInputs(const std::vector<files::NamedPath>& outputs, std::vector<files::NamedPath> inputs,
+                             const std::string& recording_dir) {
+  if (!recording_dir.empty()) {
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(recording_dir, ec)) {
+      inputs.emplace_back("--recording", entry.path().string());
+    }
+  }
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    std::vector<files::NamedPath> others = inputs;
+    for (std::size_t j = 0; j < i; ++j) others.push_back(outputs[j]);
+    if (!outputs[i].second.empty()) files::refuseOutputOverInputs(outputs[i], others);
+  }
 }
 
 }  // namespace
@@ -35,7 +54,9 @@ int main(int argc, char** argv) {
       "On stderr: a JSON line with the row count, the estimator's counters and estimator_ns_per_sample "
       "(time in the estimator alone, reading and writing not in it: measured on every 16th row and on "
       "every GPS epoch). A malformed "
-      "row stops the replay with exit status 1; the rows before it stay written."};
+      "row stops the replay with exit status 1, and nothing is written: every output is written to a temporary "
+      "file in the same folder and renamed into place only when complete. An output that is the same file as an "
+      "input (also through a link) is refused."};
   std::string imu_csv, config, out;
   headingd::replay::RecordingReplayOptions recording;
   auto* imu_option =
@@ -67,29 +88,45 @@ int main(int argc, char** argv) {
                  "turns and the raw one does not, e.g. the magnet it was made for is gone) and taken back when "
                  "it fits again");
   app.add_option("--wmm", wmm_path, "World Magnetic Model coefficients (NOAA COF)")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  app.footer(std::string("Exit codes: 0 replayed and written, 1 an input cannot be read or is malformed, or an output cannot be "
+             "written (the message names the file), 2 bad arguments (also an output that is an input).") + "\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
+
+  try {
+    if (!recording.dir.empty() && out.empty() && recording.lcm_log.empty()) {
+      throw std::runtime_error("--recording needs --out or --lcm-log");
+    }
+    if (recording.dir.empty() && (imu_csv.empty() || out.empty())) {
+      throw std::runtime_error("--imu-csv and --out are required (or --recording)");
+    }
+    refuseOverwritingInputs({{"--out", out}, {"--lcm-log", recording.lcm_log}},
+                            {{"--imu-csv", imu_csv}, {"--config", config}, {"--nmea", nmea_path}, {"--calib", calib_path},
+                             {"--wmm", wmm_path}},
+                            recording.dir);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "headingd-replay: %s\n", e.what());
+    return headingd::cli::kExitBadArguments;
+  }
 
   try {
     if (!recording.dir.empty()) {
-      if (out.empty() && recording.lcm_log.empty()) throw std::runtime_error("--recording needs --out or --lcm-log");
       recording.out_csv = out;
       return headingd::replay::replayRecording(recording);
     }
-    if (imu_csv.empty() || out.empty()) throw std::runtime_error("--imu-csv and --out are required (or --recording)");
     const core::EstimatorParams params = loadParams(config);
     files::ImuCsvReader imu(imu_csv);
     const bool calibrated = !calib_path.empty();
     core::CalibratedImuStream calibration;
     if (calibrated) {
       calibration = core::CalibratedImuStream(
-          core::parseImuCalibration(files::readMaybeGzipFile(calib_path), calib_path));
+          core::parseImuCalibration(files::readMaybeGzipFile(calib_path, files::kConfigFileLimit), calib_path));
     }
     const bool with_gps = !nmea_path.empty();
     files::NmeaEpochs gps;  // 1 Hz: small enough to read whole
     std::optional<core::WorldMagneticModel> wmm;
     if (with_gps) {
       gps = files::readNmeaEpochs(nmea_path, nmea_first_epoch_t);
-      wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(wmm_path), wmm_path));
+      wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(wmm_path, files::kWmmFileLimit), wmm_path));
     }
     core::HeadingPipeline pipeline(params, wmm ? &*wmm : nullptr);
     replay::GpsOrder order;

@@ -2,17 +2,18 @@
 // crawling and lying, written as files a replay can read. See --help for the files, the
 // time alignment of NMEA and IMU, and the scenarios. Exit codes: 0 written, 1 a file could
 // not be read or written, 2 bad arguments.
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/core/wmm.hpp"
+#include "headingd/files/input_file.hpp"
+#include "headingd/files/output_file.hpp"
 #include "headingd/sim/output.hpp"
 #include "headingd/sim/simulation.hpp"
 
@@ -45,19 +46,14 @@ void parseDate(const std::string& text, sim::SimConfig& c) {
 }
 
 std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open the WMM coefficient file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return headingd::files::readWholeFile(path, headingd::files::kWmmFileLimit);  // FileError names the file
 }
 
+// Through a temporary file renamed into place (files/output_file.hpp).
 void writeFile(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error(path.string() + ": cannot open for writing");
-  write(out);
-  out.flush();
-  if (!out) throw std::runtime_error(path.string() + ": write failed");
+  std::ostringstream text;
+  write(text);
+  files::writeWholeOutputFile(path.string(), text.str());
 }
 
 std::string scenarioList() {
@@ -115,13 +111,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--talker", c.talker, "NMEA talker id: GP or GN")->capture_default_str();
   app.add_option("--cof", cof, "WMM coefficient file (NOAA COF)")->capture_default_str();
-  app.footer(scenarioList() + "Exit codes: 0 written, 1 file error, 2 bad arguments.");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadArguments;
-  }
+  app.footer(scenarioList() + "Exit codes: 0 written, 1 file error, 2 bad arguments.\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {
     parseDate(date, c);

@@ -4,7 +4,6 @@
 //   headingd-study broad [--dir DIR] [--rate HZ ...] [--set key=value ...] [--config TOML]
 //   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--set ...]
 //   ... --trace FILE  (one run: per-sample diagnostics as CSV)
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -17,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include "headingd/cli/parse_command_line.hpp"
+#include "headingd/files/output_file.hpp"
 #include "headingd/core/params_toml.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/numeric_csv.hpp"
@@ -30,7 +31,7 @@ using namespace headingd;
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
 core::EstimatorParams loadParams(const std::string& config, const std::vector<std::string>& sets) {
-  std::string text = config.empty() ? std::string() : files::readMaybeGzipFile(config);
+  std::string text = config.empty() ? std::string() : files::readMaybeGzipFile(config, files::kConfigFileLimit);
   if (!sets.empty()) {
     if (text.find("[estimator]") == std::string::npos) text += "\n[estimator]\n";
     for (const std::string& s : sets) text += s + "\n";  // later keys of a table are errors: --set replaces none
@@ -67,7 +68,7 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
 }
 
 void writeTrace(const std::string& path, const study::Recording& r, const core::EstimatorParams& params) {
-  std::ofstream out(path);
+  std::ostringstream out;  // written whole at the end, through a temporary file renamed into place
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
          "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise\n";
   std::vector<core::EstimatorOutput> outputs;
@@ -92,6 +93,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2);
     out << line;
   }
+  files::writeWholeOutputFile(path, out.str());
 }
 
 struct Row {
@@ -138,7 +140,8 @@ int main(int argc, char** argv) {
                        "turn the first sample's accelerometer and magnetometer by this angle (about an axis drawn "
                        "from the seed): the estimator starts that far off");
   common(simulate);
-  CLI11_PARSE(app, argc, argv);
+  app.footer(std::string("Exit codes: 0 done, 1 an input cannot be read or a trace cannot be written, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {
     const core::EstimatorParams params = loadParams(config, sets);
@@ -156,7 +159,7 @@ int main(int argc, char** argv) {
       (void)sim::makeScenario(scenario);  // an unknown name fails here, once
     }
     std::optional<core::WorldMagneticModel> wmm;
-    if (*simulate) wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(cof), cof));
+    if (*simulate) wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(cof, files::kWmmFileLimit), cof));
     const std::size_t sources = *broad ? paths.size() : seeds.size();
     // Simulations are run at the asked rate directly; recordings are resampled.
     std::vector<Row> rows(sources * rates.size());

@@ -1,7 +1,6 @@
 // headingd-wmm: the World Magnetic Model field at one place and date, printed as one JSON
 // object. Exit codes: 0 done (possibly with a "warning"), 1 the COF file cannot be read or
 // parsed, 2 bad arguments.
-#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -11,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/core/wmm.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace {
 
@@ -52,12 +53,7 @@ double parseDate(const std::string& text) {
 }
 
 std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open the WMM coefficient file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(path + ": read failed");
-  return text.str();
+  return headingd::files::readWholeFile(path, headingd::files::kWmmFileLimit);  // FileError names the file
 }
 
 std::string jsonEscape(const std::string& s) {
@@ -89,14 +85,9 @@ int main(int argc, char** argv) {
   app.add_option("--alt-km", height_km, "height above the WGS-84 ellipsoid in km")->required();
   app.add_option("--date", date, "UTC date, YYYY-MM-DD")->required();
   app.add_option("--cof", cof, "WMM coefficient file in NOAA's COF layout")->capture_default_str();
-  app.footer("Exit codes: 0 done (a \"warning\" field flags a date or height outside the model's validity),\n"
-             "1 coefficient file unreadable or malformed, 2 bad arguments.");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints help or the error
-    return code == 0 ? 0 : kExitBadArguments;
-  }
+  app.footer(std::string("Exit codes: 0 done (a \"warning\" field flags a date or height outside the model's validity),\n"
+             "1 coefficient file unreadable or malformed, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
+  if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   double decimal_year = 0.0;
   try {

@@ -1,11 +1,10 @@
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "headingd/can/can_config_toml.hpp"
 #include "headingd/core/toml_document.hpp"
 #include "headingd/core/toml_table_reader.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace headingd::can {
 namespace {
@@ -131,11 +130,13 @@ CanConfig parseCanConfig(std::string_view toml_text, const std::string& source, 
 }
 
 CanConfig loadCanConfigFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": cannot open the configuration file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseCanConfig(text.str(), path, std::filesystem::path(path).parent_path().string());
+  std::string text;
+  try {
+    text = files::readWholeFile(path, files::kConfigFileLimit);
+  } catch (const files::FileError& e) {
+    throw ConfigError(std::string(e.what()) + " (the configuration file)");
+  }
+  return parseCanConfig(text, path, std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace headingd::can

@@ -1,11 +1,11 @@
 #include <cctype>
 #include <charconv>
-#include <fstream>
-#include <sstream>
+#include <cmath>
 
 #include "headingd/can/can_frame.hpp"
 #include "headingd/can/dbc.hpp"
 #include "headingd/can/signal_codec.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace headingd::can {
 namespace {
@@ -165,7 +165,9 @@ DbcSignal parseSignal(LineCursor& c) {
   c.expect(',', "',' between factor and offset");
   s.offset = c.realNumber("the offset");
   c.expect(')', "')' after factor,offset");
-  if (s.factor == 0.0) c.fail("a non-zero factor");
+  // Every decoded value is raw * factor + offset: a nan or inf here rejects every sample.
+  if (!std::isfinite(s.factor) || s.factor == 0.0) c.fail("a finite, non-zero factor");
+  if (!std::isfinite(s.offset)) c.fail("a finite offset");
   c.expect('[', "'[' before minimum|maximum");
   s.minimum = c.realNumber("the minimum");
   c.expect('|', "'|' between minimum and maximum");
@@ -270,11 +272,13 @@ DbcDatabase parseDbc(std::string_view text, const std::string& source) {
 }
 
 DbcDatabase loadDbcFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DbcError(path + ": cannot open the DBC file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseDbc(text.str(), path);
+  std::string text;
+  try {
+    text = files::readWholeFile(path, files::kDbcFileLimit);
+  } catch (const files::FileError& e) {
+    throw DbcError(std::string(e.what()) + " (the DBC file)");
+  }
+  return parseDbc(text, path);
 }
 
 }  // namespace headingd::can

@@ -2,11 +2,13 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstring>
 #include <memory>
 
+#include "headingd/files/input_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::files {
@@ -19,10 +21,18 @@ constexpr unsigned kZlibBufferBytes = 1 << 17;
 
 }  // namespace
 
-LineReader::LineReader(std::string path)
-    : path_(std::move(path)), buffer_(std::make_unique_for_overwrite<char[]>(kBufferBytes)), capacity_(kBufferBytes) {
-  gzFile file = gzopen(path_.c_str(), "rb");
-  if (file == nullptr) throw CsvError(path_ + ": cannot open: " + std::strerror(errno));
+LineReader::LineReader(std::string path, std::size_t max_line_bytes)
+    : path_(std::move(path)),
+      max_line_bytes_(std::max(max_line_bytes, kBufferBytes)), buffer_(std::make_unique_for_overwrite<char[]>(kBufferBytes)), capacity_(kBufferBytes) {
+  gzFile file = nullptr;
+  try {
+    InputFile input(path_);  // no total limit: read a buffer at a time
+    file = gzdopen(input.fd(), "rb");
+    if (file == nullptr) throw CsvError(path_ + ": cannot open: " + std::strerror(errno));
+    input.release();  // zlib closes it
+  } catch (const FileError& e) {
+    throw CsvError(e.what());
+  }
   gzbuffer(file, kZlibBufferBytes);
   file_ = file;
 }
@@ -37,6 +47,10 @@ bool LineReader::refill() {
     begin_ = 0;
   }
   if (end_ == capacity_) {  // a line longer than the buffer
+    if (capacity_ >= max_line_bytes_) {
+      throw CsvError(path_ + ":" + std::to_string(line_number_ + 1) + ": a line longer than " +
+                     bytesText(max_line_bytes_) + " (no line break): not a text file of this kind");
+    }
     auto larger = std::make_unique_for_overwrite<char[]>(capacity_ * 2);
     std::memcpy(larger.get(), buffer_.get(), end_);
     buffer_ = std::move(larger);

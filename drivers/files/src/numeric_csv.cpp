@@ -6,12 +6,20 @@
 #include <cstring>
 
 #include "headingd/files/csv_row_reader.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace headingd::files {
 
-std::string readMaybeGzipFile(const std::string& path) {
-  gzFile file = gzopen(path.c_str(), "rb");
-  if (file == nullptr) throw CsvError(path + ": cannot open: " + std::strerror(errno));
+std::string readMaybeGzipFile(const std::string& path, std::uint64_t limit) {
+  gzFile file = nullptr;
+  try {
+    InputFile input(path, limit);
+    file = gzdopen(input.fd(), "rb");
+    if (file == nullptr) throw CsvError(path + ": cannot open: " + std::strerror(errno));
+    input.release();  // zlib closes it
+  } catch (const FileError& e) {
+    throw CsvError(e.what());
+  }
   std::string data;
   char buffer[1 << 16];
   while (true) {
@@ -24,6 +32,10 @@ std::string readMaybeGzipFile(const std::string& path) {
     }
     if (n == 0) break;
     data.append(buffer, static_cast<std::size_t>(n));
+    if (limit != 0 && data.size() > limit) {  // a gzip stream may inflate far beyond its size on disk
+      gzclose(file);
+      throw CsvError(path + ": holds more than the " + bytesText(limit) + " such a file may have");
+    }
   }
   gzclose(file);
   return data;

@@ -1,5 +1,7 @@
 #include "field_reader.hpp"
 
+#include <cmath>
+
 namespace headingd::nmea {
 
 // $--RMC,hhmmss.ss,A,llll.ll,a,yyyyy.yy,a,x.x,x.x,ddmmyy,x.x,a[,m[,s]]*hh
@@ -16,7 +18,9 @@ std::optional<Rmc> decodeRmc(const FieldList& fields, int& invalid_fields) {
   r.date = f.ddmmyy(9);
   const auto magvar = f.decimal(10);
   const auto direction = f.letter(11);
-  if (magvar && direction && (*direction == 'E' || *direction == 'W')) {
+  if (magvar && !(std::fabs(*magvar) <= 180.0)) {
+    f.countInvalid();  // a variation is 0..180 degrees east or west: more is a corrupt field, not used
+  } else if (magvar && direction && (*direction == 'E' || *direction == 'W')) {
     r.magvar_deg = *direction == 'W' ? -*magvar : *magvar;
   } else if (magvar || direction) {
     f.countInvalid();  // a variation without a side, or a side without a variation

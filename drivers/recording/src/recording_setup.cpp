@@ -20,7 +20,7 @@ toml::table readToml(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw core::ConfigError(path + ": not found; expected a black-box recording folder (daemon/README.md, \"Black box\")");
   }
-  return core::parseTomlDocument(files::readMaybeGzipFile(path), path);
+  return core::parseTomlDocument(files::readMaybeGzipFile(path, files::kConfigFileLimit), path);
 }
 
 }  // namespace

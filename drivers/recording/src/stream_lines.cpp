@@ -30,10 +30,7 @@ bool StreamLines::openNext() {
   const std::uint32_t n = segment_ == 0 ? first_segment_ : segment_ + 1;
   const std::string path = segmentPath(folder_, stream_, n);
   if (!std::filesystem::exists(path)) return false;
-  in_.close();
-  in_.clear();
-  in_.open(path, std::ios::binary);
-  if (!in_) throw std::runtime_error(path + ": cannot open");
+  in_ = std::make_unique<files::LineReader>(path);
   path_ = path;
   segment_ = n;
   ++segments_;
@@ -43,12 +40,10 @@ bool StreamLines::openNext() {
 
 bool StreamLines::next(std::string_view& line) {
   while (true) {
-    if (in_.is_open() && std::getline(in_, line_)) {
+    if (in_ != nullptr && in_->next(&line)) {
       ++line_number_;
-      line = line_;
       return true;
     }
-    if (in_.is_open() && in_.bad()) throw std::runtime_error(path_ + ": read error");
     if (!openNext()) return false;
   }
 }

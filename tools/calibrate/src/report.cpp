@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "headingd/calibrate/svg_plot.hpp"
+#include "headingd/files/output_file.hpp"
 
 namespace headingd::calibrate {
 
@@ -152,10 +153,7 @@ void writeReport(const std::string& dir, const ReportInput& in) {
     << in.residuals.size() - inside << " of " << in.residuals.size() << " outside the plotted range.</p>\n";
   h << "</body></html>\n";
   const std::string path = (std::filesystem::path(dir) / "index.html").string();
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  f << h.str();
-  f.flush();
-  if (!f) throw std::runtime_error(path + ": write failed");
+  files::writeWholeOutputFile(path, h.str());
 }
 
 }  // namespace headingd::calibrate

@@ -1,8 +1,5 @@
 #include "headingd/lcm_export/csv_table.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <stdexcept>
 
 namespace headingd::lcm_export {
 
@@ -19,22 +16,8 @@ void appendCsvCell(std::string& out, std::string_view cell) {
   out.push_back('"');
 }
 
-CsvTable::CsvTable(std::filesystem::path final_path) : final_path_(std::move(final_path)) {
-  temp_path_ = final_path_;
-  temp_path_ += ".tmp";
-  file_ = std::fopen(temp_path_.c_str(), "wb");
-  if (file_ == nullptr) {
-    throw std::runtime_error(temp_path_.string() + ": cannot create: " + std::strerror(errno));
-  }
+CsvTable::CsvTable(std::filesystem::path final_path) : final_path_(std::move(final_path)), file_(final_path_.string()) {
   buffer_.reserve(1 << 16);
-}
-
-CsvTable::~CsvTable() {
-  if (file_ != nullptr) std::fclose(file_);
-  if (!finished_) {
-    std::error_code ignored;
-    std::filesystem::remove(temp_path_, ignored);
-  }
 }
 
 void CsvTable::writeRow(const std::vector<std::string>& cells) {
@@ -47,23 +30,13 @@ void CsvTable::writeRow(const std::vector<std::string>& cells) {
 }
 
 void CsvTable::flushBuffer() {
-  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
-    write_failed_ = true;
-  }
+  file_.write(buffer_);
   buffer_.clear();
 }
 
 void CsvTable::finish() {
   flushBuffer();
-  const bool closed = std::fclose(file_) == 0;
-  file_ = nullptr;
-  if (write_failed_ || !closed) {
-    throw std::runtime_error(temp_path_.string() + ": write failed: " + std::strerror(errno));
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp_path_, final_path_, ec);
-  if (ec) throw std::runtime_error(final_path_.string() + ": cannot rename into place: " + ec.message());
-  finished_ = true;
+  file_.commit();
 }
 
 }  // namespace headingd::lcm_export

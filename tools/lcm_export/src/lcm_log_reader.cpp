@@ -3,6 +3,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "headingd/files/input_file.hpp"
+
 namespace headingd::lcm_export {
 namespace {
 
@@ -15,8 +17,12 @@ std::uint64_t bigEndian(const std::uint8_t* bytes, int count) {
 }  // namespace
 
 LcmLogReader::LcmLogReader(const std::filesystem::path& path) : path_(path.string()) {
-  file_ = std::fopen(path_.c_str(), "rb");
+  // A regular file only, opened without blocking (files/input_file.hpp); read an event at a
+  // time, each of bounded size, so the log's length does not matter.
+  files::InputFile input(path_);
+  file_ = ::fdopen(input.fd(), "rb");
   if (file_ == nullptr) throw std::runtime_error(path_ + ": cannot open: " + std::strerror(errno));
+  input.release();  // the FILE closes it
   // Big sequential reads: the log is read twice, front to back.
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
   std::error_code ec;

@@ -16,13 +16,10 @@ void putBigEndian(std::uint8_t* out, T value) {
 }  // namespace
 
 LcmLogWriter::LcmLogWriter(const std::string& path) : path_(path) {
-  file_ = std::fopen(path.c_str(), "wb");
-  if (file_ == nullptr) throw std::runtime_error(path + ": cannot open for writing");
+  file_ = std::make_unique<files::OutputFile>(path);
 }
 
-LcmLogWriter::~LcmLogWriter() {
-  if (file_ != nullptr) std::fclose(file_);
-}
+LcmLogWriter::~LcmLogWriter() = default;
 
 void LcmLogWriter::write(std::string_view channel, std::int64_t utime_us, const std::uint8_t* data, std::size_t size) {
   std::uint8_t header[kLcmLogEventHeaderBytes];
@@ -31,18 +28,18 @@ void LcmLogWriter::write(std::string_view channel, std::int64_t utime_us, const 
   putBigEndian(header + 12, utime_us);
   putBigEndian(header + 20, static_cast<std::int32_t>(channel.size()));
   putBigEndian(header + 24, static_cast<std::int32_t>(size));
-  if (std::fwrite(header, 1, sizeof header, file_) != sizeof header ||
-      std::fwrite(channel.data(), 1, channel.size(), file_) != channel.size() ||
-      std::fwrite(data, 1, size, file_) != size) {
+  if (file_ == nullptr) throw std::runtime_error(path_ + ": written after close");
+  std::FILE* f = file_->stream();
+  if (std::fwrite(header, 1, sizeof header, f) != sizeof header ||
+      std::fwrite(channel.data(), 1, channel.size(), f) != channel.size() || std::fwrite(data, 1, size, f) != size) {
     throw std::runtime_error(path_ + ": write failed");
   }
 }
 
 void LcmLogWriter::close() {
   if (file_ == nullptr) return;
-  const int rc = std::fclose(file_);
-  file_ = nullptr;
-  if (rc != 0) throw std::runtime_error(path_ + ": write failed");
+  file_->commit();
+  file_.reset();
 }
 
 }  // namespace headingd::lcm_export

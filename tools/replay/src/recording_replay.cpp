@@ -32,7 +32,7 @@ struct Channels {
 Channels channelsOf(const std::string& folder) {
   Channels c;
   const std::string path = folder + "/" + std::string(recording::kConfigFile);
-  const toml::table doc = core::parseTomlDocument(files::readMaybeGzipFile(path), path);
+  const toml::table doc = core::parseTomlDocument(files::readMaybeGzipFile(path, files::kConfigFileLimit), path);
   if (const auto* heading = doc["lcm"]["heading_channel"].as_string()) c.heading = heading->get();
   if (const auto* attitude = doc["lcm"]["attitude_channel"].as_string()) c.attitude = attitude->get();
   return c;
@@ -84,12 +84,12 @@ int replayRecording(const RecordingReplayOptions& options) {
   const recording::RecordingSetup setup = recording::loadRecordingSetup(options.dir);
   std::optional<core::WorldMagneticModel> wmm;
   if (!setup.wmm_path.empty()) {
-    wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(setup.wmm_path), setup.wmm_path));
+    wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(setup.wmm_path, files::kWmmFileLimit), setup.wmm_path));
   }
   core::CalibratedImuStream calibration;
   if (!setup.calibration_path.empty()) {
     calibration = core::CalibratedImuStream(
-        core::parseImuCalibration(files::readMaybeGzipFile(setup.calibration_path), setup.calibration_path));
+        core::parseImuCalibration(files::readMaybeGzipFile(setup.calibration_path, files::kConfigFileLimit), setup.calibration_path));
   }
   core::HeadingPipeline pipeline(setup.estimator, wmm ? &*wmm : nullptr);
   recording::RecordingReader reader(setup);

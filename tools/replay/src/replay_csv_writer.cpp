@@ -1,5 +1,6 @@
 #include "headingd/replay/replay_csv_writer.hpp"
 
+#include <charconv>
 #include <cstring>
 #include <numbers>
 #include <stdexcept>
@@ -19,16 +20,31 @@ char* put(char* p, std::string_view text) {
   return p + text.size();
 }
 
-// printf("%.9g") and ("%.Nf"); the room is kMaxRowBytes.
-char* putGeneral9(char* p, double v) { return files::writeGeneral9(p, v); }
+// Seconds with all nine decimals, from the integer nanoseconds (exact: a UNIX time of 1.7e9 s
+// keeps its nanoseconds, which "%.9g" would round to 1.7e+09).
+char* putSecondsNs(char* p, std::int64_t t_ns) {
+  // Magnitudes as unsigned, so INT64_MIN has one too.
+  const bool negative = t_ns < 0;
+  const std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(t_ns) : static_cast<std::uint64_t>(t_ns);
+  if (negative) *p++ = '-';
+  p = std::to_chars(p, p + 24, magnitude / 1'000'000'000u).ptr;
+  *p++ = '.';
+  std::uint64_t fraction = magnitude % 1'000'000'000u;
+  for (int i = 8; i >= 0; --i) {
+    p[i] = static_cast<char>('0' + fraction % 10);
+    fraction /= 10;
+  }
+  return p + 9;
+}
+
+// printf("%.Nf"); the room is kMaxRowBytes.
 char* putFixed(char* p, double v, int digits) { return files::writeFixed(p, v, digits); }
 
 }  // namespace
 
 ReplayCsvWriter::ReplayCsvWriter(const std::string& path, bool with_gps)
     : path_(path), with_gps_(with_gps), buffer_(std::make_unique_for_overwrite<char[]>(kBufferBytes + kMaxRowBytes)) {
-  file_ = std::fopen(path.c_str(), "w");
-  if (file_ == nullptr) throw std::runtime_error(path + ": cannot open for writing");
+  file_ = std::make_unique<files::OutputFile>(path);
   used_ = static_cast<std::size_t>(
       put(buffer_.get(), with_gps ? "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_mag_deg,declination_deg,"
                                      "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,"
@@ -37,16 +53,13 @@ ReplayCsvWriter::ReplayCsvWriter(const std::string& path, bool with_gps)
       buffer_.get());
 }
 
-ReplayCsvWriter::~ReplayCsvWriter() {
-  if (file_ == nullptr) return;
-  flush();  // what was estimated before an error stays written
-  std::fclose(file_);
-}
+// Not closed: an error stopped the replay, and the output file is dropped (never half-written).
+ReplayCsvWriter::~ReplayCsvWriter() = default;
 
 void ReplayCsvWriter::write(std::int64_t t_ns, const core::HeadingOutput& h) {
   char* p = buffer_.get() + used_;
   const core::EstimatorOutput& e = h.attitude;
-  p = putGeneral9(p, static_cast<double>(t_ns) * 1e-9);
+  p = putSecondsNs(p, t_ns);
   if (!e.valid) {
     p = put(p, with_gps_ ? ",nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,none,nan,nan,0\n"
                          : ",nan,nan,nan,nan,nan,nan,nan\n");
@@ -84,16 +97,15 @@ void ReplayCsvWriter::flushIfFull() {
 }
 
 void ReplayCsvWriter::flush() {
-  if (used_ > 0 && std::fwrite(buffer_.get(), 1, used_, file_) != used_) failed_ = true;
+  file_->write(std::string_view(buffer_.get(), used_));
   used_ = 0;
 }
 
 void ReplayCsvWriter::close() {
   if (file_ == nullptr) return;
   flush();
-  const bool closed = std::fclose(file_) == 0;
-  file_ = nullptr;
-  if (failed_ || !closed) throw std::runtime_error(path_ + ": write failed");
+  file_->commit();  // throws files::FileError naming the file
+  file_.reset();
 }
 
 }  // namespace headingd::replay

@@ -23,8 +23,10 @@ namespace headingd::daemon {
 
 class Daemon {
  public:
-  // Reads every file the configuration names (WMM, recordings) and builds the sources, but
-  // starts nothing and opens no socket: what --check-config runs. Throws on any problem.
+  // Reads and checks every file the configuration names (calibration, WMM, DBC, logs,
+  // recordings) and builds the sources, but starts nothing and opens no socket. This is the
+  // whole validation of start-up: --check-config runs it and stops, start-up runs it and then
+  // start(), so the two cannot disagree. Throws on any problem (main: exit status 2).
   explicit Daemon(DaemonConfig config);
   ~Daemon();
 
@@ -46,6 +48,7 @@ class Daemon {
   void startRecorder();
 
   DaemonConfig config_;
+  core::CalibratedImuStream calibration_;  // handed to the loop by start()
   std::unique_ptr<core::WorldMagneticModel> wmm_;
   // The black box (null: off). Made before the sources (they hold its streams) and stopped
   // after them.

@@ -40,6 +40,10 @@
 
 namespace headingd::daemon {
 
+// [daemon] calibration: none when `path` is empty; throws naming the file when it cannot be
+// read or parsed. Run at start-up (so --check-config sees it) and on SIGHUP.
+core::CalibratedImuStream loadCalibration(const std::string& path);
+
 // Whole-run figures, for the summary printed at exit and for measure.sh.
 struct LoopSummary {
   std::uint64_t ticks = 0;
@@ -51,10 +55,12 @@ struct LoopSummary {
 
 class EstimatorLoop {
  public:
-  // Everything is borrowed and must outlive the loop. `wmm` may be null.
+  // Everything is borrowed and must outlive the loop. `wmm` may be null. `calibration`: read
+  // from [daemon] calibration by loadCalibration() before (at start-up, with the other checks).
   EstimatorLoop(const DaemonConfig& config, const core::WorldMagneticModel* wmm,
                 std::vector<SampleRing<ImuRingEntry>*> imu_rings, std::vector<SampleRing<GpsRingEntry>*> gps_rings,
-                std::vector<Source*> sources, LcmPublisher& publisher, SystemdNotifier& notifier);
+                std::vector<Source*> sources, LcmPublisher& publisher, SystemdNotifier& notifier,
+                core::CalibratedImuStream calibration);
 
   // Runs ticks on the calling thread until stop() or until a source asked for it (at_end =
   // "exit"), no file source is playing any more and their data is processed.
@@ -138,6 +144,7 @@ class EstimatorLoop {
 
   // Logging limits for per-sample problems.
   RepeatLimiter rejected_log_;
+  RepeatLimiter gps_rejected_log_;  // GPS epochs the pipeline rejected
   RepeatLimiter drop_log_;
   RepeatLimiter miss_log_;
 

@@ -2,13 +2,12 @@
 
 #include <time.h>
 
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <variant>
 
+#include "headingd/files/input_file.hpp"
 #include "headingd/nmea/checksum.hpp"
 #include "headingd/nmea/comment_filter.hpp"
 #include "headingd/nmea/sentences.hpp"
@@ -59,10 +58,14 @@ NmeaLogPlayer::NmeaLogPlayer(boost::asio::io_context& io, NmeaLogPlayerConfig co
       timer_(io) {
   if (!(config_.speed > 0.0)) throw std::invalid_argument("NMEA log player: speed must be positive");
   if (!(config_.max_gap_s > 0.0)) throw std::invalid_argument("NMEA log player: max_gap_s must be positive");
-  std::ifstream in(config_.path, std::ios::binary);
-  if (!in) throw std::runtime_error(config_.path + ": cannot open NMEA log");
-  const std::vector<std::uint8_t> raw{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw std::runtime_error(config_.path + ": error reading NMEA log");
+  // Held whole (it is indexed into epochs before playing), so limited like every log read whole.
+  std::vector<std::uint8_t> raw;
+  try {
+    const std::string text = files::readWholeFile(config_.path, files::kWholeLogLimit);
+    raw.assign(text.begin(), text.end());
+  } catch (const files::FileError& e) {
+    throw std::runtime_error(std::string(e.what()) + " (the NMEA log)");
+  }
   CommentFilter comments;
   comments.filter(raw, bytes_);
   counters_.comment_lines = comments.commentLines();

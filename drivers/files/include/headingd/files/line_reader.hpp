@@ -7,12 +7,16 @@
 #include <string>
 #include <string_view>
 
+#include "headingd/files/input_file.hpp"  // kMaxLineBytes
+
 namespace headingd::files {
 
 class LineReader {
  public:
-  // Throws CsvError "PATH: cannot open: REASON".
-  explicit LineReader(std::string path);
+  // Throws CsvError "PATH: cannot open: REASON", or naming why PATH is no regular file (a FIFO,
+  // a device, a directory: input_file.hpp). A line longer than `max_line_bytes` (rounded up to
+  // the buffer's 256 kiB) throws CsvError "PATH:LINE: a line longer than ..." from next().
+  explicit LineReader(std::string path, std::size_t max_line_bytes = kMaxLineBytes);
   ~LineReader();
   LineReader(const LineReader&) = delete;
   LineReader& operator=(const LineReader&) = delete;
@@ -29,6 +33,7 @@ class LineReader {
   bool refill();  // false when the file has no more bytes
 
   std::string path_;
+  std::size_t max_line_bytes_;
   void* file_ = nullptr;    // gzFile (kept out of this header so users need not include zlib)
   std::unique_ptr<char[]> buffer_;  // not zeroed: every byte used is read first
   std::size_t capacity_ = 0;

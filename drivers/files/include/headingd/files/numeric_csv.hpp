@@ -2,10 +2,13 @@
 // Reads numeric columns, by header name, from a CSV file that is plain text or gzip
 // (zlib reads both). The first line must be the header. Columns not asked for are ignored
 // and never parsed. Errors name the file, the 1-based line and the column.
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "headingd/files/input_file.hpp"  // the size limits
 
 namespace headingd::files {
 
@@ -31,7 +34,9 @@ struct NumericCsv {
 NumericCsv readNumericCsv(const std::string& path, const std::vector<std::string>& required,
                           const std::vector<std::string>& optional = {});
 
-// The whole file, decompressed if it is gzip.
-std::string readMaybeGzipFile(const std::string& path);
+// The whole file, decompressed if it is gzip, of at most `limit` bytes decompressed (one of
+// input_file.hpp's limits). Throws CsvError naming the file when it is not a regular file
+// (a FIFO, a device, a directory) or larger than the limit.
+std::string readMaybeGzipFile(const std::string& path, std::uint64_t limit);
 
 }  // namespace headingd::files

@@ -1,10 +1,13 @@
 #pragma once
 // The lines of one stream of a recording folder, segment after segment
-// (<stream>.000001.log, <stream>.000002.log, ...), without holding a file in memory.
+// (<stream>.000001.log, <stream>.000002.log, ...), without holding a file in memory. A line
+// longer than files::kMaxLineBytes throws (a damaged segment must not grow memory).
 #include <cstdint>
-#include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
+
+#include "headingd/files/line_reader.hpp"
 
 namespace headingd::recording {
 
@@ -26,9 +29,8 @@ class StreamLines {
 
   std::string folder_;
   std::string stream_;
-  std::ifstream in_;
+  std::unique_ptr<files::LineReader> in_;  // the open segment (regular files only, lines bounded)
   std::string path_;
-  std::string line_;
   std::uint32_t first_segment_ = 0;
   std::uint32_t segment_ = 0;   // open segment's number, 0 = none yet
   std::uint32_t segments_ = 0;  // opened so far
