@@ -14,8 +14,9 @@ constexpr std::int64_t kDayNs = 86'400'000'000'000;
 
 }  // namespace
 
-NmeaLogFixes readNmeaLogFixes(const std::string& path) {
-  const std::string text = readMaybeGzipFile(path);
+NmeaLogFixes readNmeaLogFixes(const std::string& path) { return parseNmeaLogFixes(readMaybeGzipFile(path)); }
+
+NmeaLogFixes parseNmeaLogFixes(std::string_view text) {
   std::vector<std::uint8_t> bytes;
   nmea::CommentFilter comments;
   comments.filter({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, bytes);

@@ -5,28 +5,36 @@
 #include <cerrno>
 #include <cstring>
 
+#include "gzip_end.hpp"
 #include "headingd/files/csv_row_reader.hpp"
 
 namespace headingd::files {
 
-std::string readMaybeGzipFile(const std::string& path) {
+MaybeCutText readMaybeGzipLog(const std::string& path) {
   gzFile file = gzopen(path.c_str(), "rb");
   if (file == nullptr) throw CsvError(path + ": cannot open: " + std::strerror(errno));
-  std::string data;
+  MaybeCutText result;
+  std::string& data = result.text;
   char buffer[1 << 16];
   while (true) {
     const int n = gzread(file, buffer, sizeof buffer);
     if (n < 0) {
-      int code = 0;
-      const std::string message = gzerror(file, &code);
+      const std::string message = gzipReadErrorMessage(file, path);
       gzclose(file);
-      throw CsvError(path + ": read error: " + message);
+      throw CsvError(message);
     }
     if (n == 0) break;
     data.append(buffer, static_cast<std::size_t>(n));
   }
+  result.end_missing = gzipEndMissing(file);
   gzclose(file);
-  return data;
+  return result;
+}
+
+std::string readMaybeGzipFile(const std::string& path) {
+  MaybeCutText read = readMaybeGzipLog(path);
+  if (read.end_missing) throw CsvError(gzipEndMissingMessage(path, read.text.size()));
+  return std::move(read.text);
 }
 
 NumericCsv readNumericCsv(const std::string& path, const std::vector<std::string>& required,

@@ -59,10 +59,16 @@ NmeaLogPlayer::NmeaLogPlayer(boost::asio::io_context& io, NmeaLogPlayerConfig co
       timer_(io) {
   if (!(config_.speed > 0.0)) throw std::invalid_argument("NMEA log player: speed must be positive");
   if (!(config_.max_gap_s > 0.0)) throw std::invalid_argument("NMEA log player: max_gap_s must be positive");
-  std::ifstream in(config_.path, std::ios::binary);
-  if (!in) throw std::runtime_error(config_.path + ": cannot open NMEA log");
-  const std::vector<std::uint8_t> raw{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw std::runtime_error(config_.path + ": error reading NMEA log");
+  std::vector<std::uint8_t> raw;
+  if (config_.contents) {
+    raw.assign(config_.contents->begin(), config_.contents->end());
+    config_.contents.reset();
+  } else {
+    std::ifstream in(config_.path, std::ios::binary);
+    if (!in) throw std::runtime_error(config_.path + ": cannot open NMEA log");
+    raw.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) throw std::runtime_error(config_.path + ": error reading NMEA log");
+  }
   CommentFilter comments;
   comments.filter(raw, bytes_);
   counters_.comment_lines = comments.commentLines();
