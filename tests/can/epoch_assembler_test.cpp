@@ -179,46 +179,43 @@ TEST(EpochAssembler, CounterGapsAndDuplicates) {
   EXPECT_EQ(a.counters().duplicate_frames, 1u);
 }
 
-TEST(EpochAssembler, SwappedEpochPairsAreReorderedNotMissing) {
-  // 100 pairs of consecutive epochs swapped (…, 1, 3, 2, 5, 4, …): each late epoch is one
-  // reordered epoch, not a skip of nearly the whole 4-bit counter range (15 + 1 "missing").
+// The assembler's counters after every frame of the epochs `order`, in that order.
+AssemblerCounters countersAfter(const std::vector<int>& order) {
   Fixture fx("can-headingd.toml");
   EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
-  for (int k = 0; k < 400; ++k) {
-    const bool swap = k % 4 == 1;  // epochs 1 and 2, 5 and 6, ... change places
-    const int epoch = swap ? k + 1 : (k % 4 == 2 ? k - 1 : k);
-    for (const auto& f : fx.epoch(epoch)) c.take(a.push(f));
+  for (const int k : order) {
+    for (const auto& f : fx.epoch(k)) a.push(f);
   }
-  c.take(a.finish());
-  EXPECT_EQ(c.samples.size(), 400u);
-  EXPECT_EQ(a.counters().reordered_epochs, 100u);
-  EXPECT_EQ(a.counters().missing_epochs, 0u);
-  EXPECT_EQ(a.counters().sequence_gaps, 0u);
+  return a.counters();
+}
+
+TEST(EpochAssembler, SwappedEpochPairsAreReorderedNotMissing) {
+  // 100 pairs of consecutive epochs swapped (0, 2, 1, 3, 4, 6, 5, 7, ...): each late epoch is
+  // one reordered epoch, not a skip of nearly the whole 4-bit counter range (15 + 1 "missing").
+  std::vector<int> order;
+  for (int k = 0; k < 400; ++k) order.push_back(k % 4 == 1 ? k + 1 : (k % 4 == 2 ? k - 1 : k));
+  const AssemblerCounters c = countersAfter(order);
+  EXPECT_EQ(c.samples, 400u);
+  EXPECT_EQ(c.reordered_epochs, 100u);
+  EXPECT_EQ(c.missing_epochs, 0u);
+  EXPECT_EQ(c.sequence_gaps, 0u);
 }
 
 TEST(EpochAssembler, ALateEpochInsideAGapIsNoLongerMissing) {
-  Fixture fx("can-headingd.toml");
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
-  for (int k : {0, 1, 2, 6, 4, 7}) {  // 3, 4, 5 skipped, then 4 arrives late: 3 and 5 stay missing
-    for (const auto& f : fx.epoch(k)) c.take(a.push(f));
-  }
-  EXPECT_EQ(a.counters().reordered_epochs, 1u);
-  EXPECT_EQ(a.counters().missing_epochs, 2u);
-  EXPECT_EQ(a.counters().sequence_gaps, 2u);  // the gap 3..5 is now two gaps, 3 and 5
-  for (const auto& f : fx.epoch(3)) c.take(a.push(f));
-  for (const auto& f : fx.epoch(5)) c.take(a.push(f));
-  EXPECT_EQ(a.counters().reordered_epochs, 3u);
-  EXPECT_EQ(a.counters().missing_epochs, 0u);
-  EXPECT_EQ(a.counters().sequence_gaps, 0u);
-  // Further back than a quarter of the counter range (4 of 16) is a skip ahead, as before.
-  for (int k : {8, 9, 10}) {
-    for (const auto& f : fx.epoch(k)) c.take(a.push(f));
-  }
-  for (const auto& f : fx.epoch(15 + 16)) c.take(a.push(f));  // 5 ahead of 10 (mod 16): 4 missing
-  EXPECT_EQ(a.counters().missing_epochs, 4u);
-  EXPECT_EQ(a.counters().reordered_epochs, 3u);
+  // 3, 4, 5 skipped, then 4 arrives late: 3 and 5 stay missing, in two gaps.
+  AssemblerCounters c = countersAfter({0, 1, 2, 6, 4, 7});
+  EXPECT_EQ(c.reordered_epochs, 1u);
+  EXPECT_EQ(c.missing_epochs, 2u);
+  EXPECT_EQ(c.sequence_gaps, 2u);
+  c = countersAfter({0, 1, 2, 6, 4, 7, 3, 5});  // then 3 and 5 too: nothing missing
+  EXPECT_EQ(c.reordered_epochs, 3u);
+  EXPECT_EQ(c.missing_epochs, 0u);
+  EXPECT_EQ(c.sequence_gaps, 0u);
+  // Further back than a quarter of the counter range (4 of 16) is a skip ahead, as before:
+  // 15 after 10 is 11 behind (mod 16) or 5 ahead: 4 missing.
+  c = countersAfter({8, 9, 10, 15});
+  EXPECT_EQ(c.missing_epochs, 4u);
+  EXPECT_EQ(c.reordered_epochs, 0u);
 }
 
 TEST(EpochAssembler, MalformedFramesAreCounted) {

@@ -14,10 +14,7 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::LcmCollector;
-using test::lcmUrl;
-using test::TempDir;
+using namespace test;
 
 constexpr const char* kDemoCan = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz";
 constexpr const char* kDemoNmea = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
