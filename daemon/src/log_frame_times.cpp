@@ -1,6 +1,5 @@
 #include "headingd/daemon/log_frame_times.hpp"
 
-#include <cstdlib>
 
 namespace headingd::daemon {
 namespace {

@@ -9,7 +9,7 @@
 //    (below), the frames after (before) it agreeing with each other;
 //  - a time step, a step between two played frames backwards by more than kJumpNs or forwards
 //    by more than kLongestGapNs, is played at once: the frames after it keep their spacing
-//    from there on (played `shift` later or earlier than their own time);
+//    from there on;
 //  - a shorter step backwards (frames of two epochs swapped) is played at once, a shorter
 //    step forwards (a gap in the log) is waited for, so the log stays on the clock it shares
 //    with the NMEA log.

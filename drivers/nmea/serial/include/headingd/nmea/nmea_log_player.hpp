@@ -31,7 +31,7 @@ struct NmeaLogPlayerConfig {
   ParserConfig parser;
   // The log's text when the caller has read it already (decompressed, say); `path` then only
   // names it in messages. Without it the file at `path` is read as it is.
-  std::optional<std::string> contents = std::nullopt;  // (an initializer: shorter brace lists stay valid)
+  std::optional<std::string> contents = std::nullopt;
 };
 
 struct NmeaLogPlayerCounters {
