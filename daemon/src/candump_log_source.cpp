@@ -8,7 +8,9 @@
 #include "headingd/daemon/can_assembler_report.hpp"
 #include "headingd/can/epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
+#include "headingd/daemon/log_frame_times.hpp"
 #include "headingd/daemon/readable_path.hpp"
+#include "headingd/files/input_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::daemon {
@@ -53,17 +55,61 @@ CandumpLogSource::CandumpLogSource(std::string name, const CandumpLogSourceConfi
   codec_ = std::make_unique<can::ImuFrameCodec>(can_config_, dbc_);
   assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(can_config_));
   flush_age_ns_ = can::epochFlushAgeNs(can_config_, *codec_);
+  // Read whole (a 10 min, 100 Hz log is ~10 MB of text, ~6 MB of frames) so that playing
+  // never touches the disk and --check-config sees every line. A gzip log cut short (a power
+  // loss while recording) is played as far as it goes, and said so.
+  const files::MaybeCutText log = files::readMaybeGzipLog(config.path, files::kWholeLogLimit);
+  end_missing_ = log.end_missing;
+  std::vector<can::CanFrame> all;
+  std::vector<std::uint64_t> lines;  // of each frame, for the messages below
   {
-    // Read whole (a 10 min, 100 Hz log is ~10 MB of text, ~6 MB of frames) so that playing
-    // never touches the disk and --check-config sees every line.
-    std::istringstream text(files::readMaybeGzipFile(config.path, files::kWholeLogLimit));
+    std::istringstream text(log.text);
     can::CandumpReader reader(text);
-    while (const std::optional<can::CanFrame> frame = reader.next()) frames_.push_back(*frame);
+    while (const std::optional<can::CanFrame> frame = reader.next()) {
+      all.push_back(*frame);
+      lines.push_back(reader.counters().lines);
+    }
     reader_counters_ = reader.counters();
   }
   if (reader_counters_.bad_lines > 0) {
     spdlog::warn("{}: {} line(s) are not candump frames and are skipped; the first, line {}: {}", config.path,
                  reader_counters_.bad_lines, reader_counters_.first_bad_line, reader_counters_.first_bad_reason);
+  }
+  if (end_missing_) {
+    spdlog::warn("{}: the gzip log is cut short: {} bytes of text, {} frames read; the end of the log is missing, "
+                 "what was read is played",
+                 config.path, log.text.size(), all.size());
+  }
+  placeFrames(config.path, all, lines);
+}
+
+void CandumpLogSource::placeFrames(const std::string& path, const std::vector<can::CanFrame>& all,
+                                   const std::vector<std::uint64_t>& lines) {
+  std::vector<std::int64_t> log_ns(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) log_ns[i] = all[i].kernel_time_ns;
+  const LogFrameTimes times = placeLogFrames(log_ns);
+  time_outlier_frames_ = times.outlier_frames;
+  time_steps_ = times.time_steps;
+  frames_.reserve(all.size() - times.outlier_frames);
+  play_ns_.reserve(all.size() - times.outlier_frames);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (times.skipped[i]) continue;
+    frames_.push_back(all[i]);
+    play_ns_.push_back(times.play_ns[i]);
+  }
+  auto seconds = [](std::int64_t ns) { return static_cast<double>(ns) * 1e-9; };
+  if (times.outlier_frames > 0) {
+    const auto at = static_cast<std::size_t>(times.first_outlier_index);
+    spdlog::warn("{}: {} frame(s) whose time lies more than {:g} s from the frames around them are skipped; the "
+                 "first, line {}: ({:.6f})",
+                 path, times.outlier_frames, seconds(LogFrameTimes::kJumpNs), lines[at], seconds(log_ns[at]));
+  }
+  if (times.time_steps > 0) {
+    const auto at = static_cast<std::size_t>(times.first_step_index);
+    spdlog::warn("{}: the log's time steps {} time(s) (back by more than {:g} s or ahead by more than {:g} s) and is "
+                 "played on without waiting; the first, line {}: ({:.6f})",
+                 path, times.time_steps, seconds(LogFrameTimes::kJumpNs), seconds(LogFrameTimes::kLongestGapNs),
+                 lines[at], seconds(log_ns[at]));
   }
 }
 
@@ -71,7 +117,7 @@ CandumpLogSource::~CandumpLogSource() { stop(); }
 
 std::optional<std::int64_t> CandumpLogSource::firstLogNs() const {
   if (frames_.empty()) return std::nullopt;
-  return frames_.front().kernel_time_ns;
+  return play_ns_.front();
 }
 
 void CandumpLogSource::pushSamples(const can::AssembledSamples& samples) {
@@ -91,7 +137,7 @@ void CandumpLogSource::finish() {
 
 void CandumpLogSource::playDue() {
   const std::int64_t now = monotonicNs();
-  while (next_frame_ < frames_.size() && clock_->dueMonoNs(frames_[next_frame_].kernel_time_ns) <= now) {
+  while (next_frame_ < frames_.size() && clock_->dueMonoNs(play_ns_[next_frame_]) <= now) {
     const can::CanFrame& frame = frames_[next_frame_++];
     // The flush on the log's own time: what a receiver with perfect timing would have seen.
     pushSamples(can::flushEpoch(*assembler_, can_config_, flush_age_ns_, frame.kernel_time_ns));
@@ -105,7 +151,7 @@ void CandumpLogSource::playDue() {
   takeSnapshot();
   // steady_clock is CLOCK_MONOTONIC on Linux: absolute deadlines, no drift.
   timer_.expires_at(std::chrono::steady_clock::time_point(
-      std::chrono::nanoseconds(clock_->dueMonoNs(frames_[next_frame_].kernel_time_ns))));
+      std::chrono::nanoseconds(clock_->dueMonoNs(play_ns_[next_frame_]))));
   timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) playDue();
   });
@@ -123,9 +169,12 @@ void CandumpLogSource::report(SourceReport& out) const {
   out.state = finished ? SourceState::kFinished : SourceState::kRunning;
   out.last_error.clear();
   std::size_t i = 0;
-  out.set(i++, "frames_in_log", frames_.size());
+  out.set(i++, "frames_in_log", reader_counters_.frames);
   out.set(i++, "frames_played", frames_played_.load(std::memory_order_relaxed));
   out.set(i++, "log_bad_lines", reader_counters_.bad_lines);
+  out.set(i++, "log_end_missing", end_missing_ ? 1u : 0u);
+  out.set(i++, "time_outlier_frames", time_outlier_frames_);
+  out.set(i++, "time_steps", time_steps_);
   out.set(i++, "samples_pushed", pushed());
   out.set(i++, "ring_full_drops", ringFullDrops());
   withSnapshot([&](const can::AssemblerCounters& assembler) { reportAssemblerCounters(out, &i, assembler); });

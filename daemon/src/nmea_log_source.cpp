@@ -8,6 +8,8 @@
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/nmea_epochs.hpp"
+#include "headingd/files/input_file.hpp"
+#include "headingd/files/numeric_csv.hpp"
 #include "headingd/nmea/gps_observation_from_fix.hpp"
 
 namespace headingd::daemon {
@@ -51,8 +53,19 @@ NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config
       ring_(gps_ring),
       offset_ns_(std::llround(config.time_offset_s * 1e9)),
       start_timer_(io()) {
+  // Read once, for the player and for the first epoch below. A gzip log cut short (a power
+  // loss while recording) is played as far as it goes, and said so.
+  files::MaybeCutText log = files::readMaybeGzipLog(config.path, files::kWholeLogLimit);
+  end_missing_ = log.end_missing;
+  if (end_missing_) {
+    spdlog::warn("{}: the gzip log is cut short: {} bytes of text read; the end of the log is missing, what was "
+                 "read is played",
+                 config.path, log.text.size());
+  }
+  const std::vector<nmea::FixUpdate> updates = files::parseNmeaLogFixes(log.text).updates;
   nmea::NmeaLogPlayerConfig player;
   player.path = config.path;
+  player.contents = std::move(log.text);
   player.speed = playback.speed;
   // Gaps in the log (no fix indoors) are played as they are: shortened, they would put the
   // player ahead of the candump log it was recorded beside.
@@ -62,7 +75,6 @@ NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config
       nmea::LineHandler{}, [this] { onFinished(); });
 
   // The first epoch's time and the first date, from the parser's view of the whole log.
-  const std::vector<nmea::FixUpdate> updates = files::readNmeaLogFixes(config.path).updates;
   std::optional<std::int64_t> previous_tod;
   for (const nmea::FixUpdate& u : updates) {
     if (u.fix.utc_ns && u.fix.time_of_day_ns && first_day_ns_ == 0) first_day_ns_ = *u.fix.utc_ns - *u.fix.time_of_day_ns;
@@ -117,6 +129,7 @@ void NmeaLogSource::report(SourceReport& out) const {
   withSnapshot([&](const nmea::NmeaLogPlayerCounters& c) {
     std::size_t i = 0;
     out.set(i++, "epochs_in_log", epochs_in_log_);
+    out.set(i++, "log_end_missing", end_missing_ ? 1u : 0u);
     out.set(i++, "epochs", c.epochs.epochs);
     out.set(i++, "epochs_pushed", pushed());
     out.set(i++, "ring_full_drops", ringFullDrops());

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "can_test_support.hpp"
 #include "headingd/can/candump_log.hpp"
@@ -81,6 +82,23 @@ TEST(CandumpLog, RejectsBadLinesWithAReason) {
   std::string reason;
   parseCandumpLine("(1.0) can0 123##1DEADBEEF", &reason);
   EXPECT_NE(reason.find("CAN FD"), std::string::npos);
+}
+
+TEST(CandumpLog, RejectsSignedAndOutOfRangeTimes) {
+  // from_chars reads "-0" as 0: (-0.5) was taken for +0.5 s. A sign is no candump time.
+  for (const char* line : {"(-0.5) can0 123#00", "(-1.000000) can0 123#00", "(+1.000000) can0 123#00",
+                           "(-0.000000) can0 123#00", "(9000000001.000000) can0 123#00", "( 1.0) can0 123#00"}) {
+    std::string reason;
+    EXPECT_FALSE(parseCandumpLine(line, &reason)) << line;
+    EXPECT_NE(reason.find("timestamp"), std::string::npos) << line << ": " << reason;
+  }
+  std::istringstream log("(1.000000) can0 123#00\n(-0.500000) can0 123#00\n(2.000000) can0 123#00\n");
+  CandumpReader reader(log);
+  ASSERT_EQ(reader.next()->kernel_time_ns, 1'000'000'000);
+  ASSERT_EQ(reader.next()->kernel_time_ns, 2'000'000'000);
+  EXPECT_FALSE(reader.next());
+  EXPECT_EQ(reader.counters().bad_lines, 1u);
+  EXPECT_EQ(reader.counters().first_bad_line, 2u);
 }
 
 TEST(CandumpLog, FormatParsesBack) {

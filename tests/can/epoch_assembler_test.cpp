@@ -179,6 +179,45 @@ TEST(EpochAssembler, CounterGapsAndDuplicates) {
   EXPECT_EQ(a.counters().duplicate_frames, 1u);
 }
 
+// The assembler's counters after every frame of the epochs `order`, in that order.
+AssemblerCounters countersAfter(const std::vector<int>& order) {
+  Fixture fx("can-headingd.toml");
+  EpochAssembler a(fx.codec(), fx.settings());
+  for (const int k : order) {
+    for (const auto& f : fx.epoch(k)) a.push(f);
+  }
+  return a.counters();
+}
+
+TEST(EpochAssembler, SwappedEpochPairsAreReorderedNotMissing) {
+  // 100 pairs of consecutive epochs swapped (0, 2, 1, 3, 4, 6, 5, 7, ...): each late epoch is
+  // one reordered epoch, not a skip of nearly the whole 4-bit counter range (15 + 1 "missing").
+  std::vector<int> order;
+  for (int k = 0; k < 400; ++k) order.push_back(k % 4 == 1 ? k + 1 : (k % 4 == 2 ? k - 1 : k));
+  const AssemblerCounters c = countersAfter(order);
+  EXPECT_EQ(c.samples, 400u);
+  EXPECT_EQ(c.reordered_epochs, 100u);
+  EXPECT_EQ(c.missing_epochs, 0u);
+  EXPECT_EQ(c.sequence_gaps, 0u);
+}
+
+TEST(EpochAssembler, ALateEpochInsideAGapIsNoLongerMissing) {
+  // 3, 4, 5 skipped, then 4 arrives late: 3 and 5 stay missing, in two gaps.
+  AssemblerCounters c = countersAfter({0, 1, 2, 6, 4, 7});
+  EXPECT_EQ(c.reordered_epochs, 1u);
+  EXPECT_EQ(c.missing_epochs, 2u);
+  EXPECT_EQ(c.sequence_gaps, 2u);
+  c = countersAfter({0, 1, 2, 6, 4, 7, 3, 5});  // then 3 and 5 too: nothing missing
+  EXPECT_EQ(c.reordered_epochs, 3u);
+  EXPECT_EQ(c.missing_epochs, 0u);
+  EXPECT_EQ(c.sequence_gaps, 0u);
+  // Further back than a quarter of the counter range (4 of 16) is a skip ahead, as before:
+  // 15 after 10 is 11 behind (mod 16) or 5 ahead: 4 missing.
+  c = countersAfter({8, 9, 10, 15});
+  EXPECT_EQ(c.missing_epochs, 4u);
+  EXPECT_EQ(c.reordered_epochs, 0u);
+}
+
 TEST(EpochAssembler, MalformedFramesAreCounted) {
   Fixture fx("can-headingd.toml");
   EpochAssembler a(fx.codec(), fx.settings());

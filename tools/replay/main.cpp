@@ -79,7 +79,8 @@ int main(int argc, char** argv) {
                  "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed. "
                  "Alignment: the first NMEA epoch (first sentence with a UTC time) is at IMU time "
                  "--nmea-first-epoch-t, later epochs at that plus their UTC difference");
-  app.add_option("--nmea-first-epoch-t", nmea_first_epoch_t, "IMU time [s] of the first NMEA epoch (default 0)");
+  app.add_option("--nmea-first-epoch-t", nmea_first_epoch_t, "IMU time [s] of the first NMEA epoch (default 0)")
+      ->check(CLI::Range(-9e9, 9e9));
   std::string calib_path;
   app.add_option("--calib", calib_path,
                  "calibration TOML (headingd-calibrate --out): gyro bias/scale, accelerometer scale/bias and "

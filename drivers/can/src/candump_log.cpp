@@ -38,6 +38,8 @@ bool parseTime(std::string_view t, std::int64_t& ns, std::string* reason) {
   if (dot == std::string_view::npos || dot == 0 || dot + 1 >= t.size() || t.size() - dot - 1 > 9) {
     return fail(reason, "a timestamp '(seconds.microseconds)'");
   }
+  // from_chars takes "-0" for 0: a sign would turn (-0.5) into +0.5 s. candump writes none.
+  if (t.front() < '0' || t.front() > '9') return fail(reason, "a timestamp '(seconds.microseconds)' without a sign");
   std::int64_t seconds = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + dot, seconds);
   if (ec != std::errc() || end != t.data() + dot || seconds < 0 || seconds > 9'000'000'000) {

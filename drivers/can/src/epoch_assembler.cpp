@@ -1,5 +1,6 @@
 #include "headingd/can/epoch_assembler.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace headingd::can {
@@ -17,6 +18,9 @@ EpochAssembler::EpochAssembler(const ImuFrameCodec& codec, EpochSettings setting
   if (settings_.wait_for_mag && codec_.hasMag()) required_mask_ |= kMagAxes;
   const unsigned bits = codec_.sequenceBits();
   sequence_mask_ = bits == 0 ? 0 : (bits >= 64 ? ~0ull : (1ull << bits) - 1);
+  // A quarter of the counter's range (at most 64) behind the newest is "late", the rest
+  // "ahead": a 4-bit counter tells 4 epochs late from a skip of up to 11.
+  reorder_window_ = std::max<std::uint64_t>(1, std::min<std::uint64_t>(64, (sequence_mask_ >> 2) + (bits >= 2 ? 1 : 0)));
 }
 
 bool EpochAssembler::sameEpoch(const EpochKey& key, const DecodedFrame& d, std::int64_t t_ns) const {
@@ -28,17 +32,42 @@ bool EpochAssembler::sameEpoch(const EpochKey& key, const DecodedFrame& d, std::
 
 void EpochAssembler::open(const DecodedFrame& d, std::int64_t t_ns) {
   pending_ = EpochKey{true, d.has_sequence, d.sequence, t_ns, 0};
-  if (d.has_sequence) {
-    if (have_last_sequence_) {
-      const std::uint64_t expected = (last_sequence_ + 1) & sequence_mask_;
-      if (d.sequence != expected) {
-        ++counters_.sequence_gaps;
-        counters_.missing_epochs += (d.sequence - last_sequence_ - 1) & sequence_mask_;
-      }
-    }
+  if (d.has_sequence) countSequence(d.sequence);
+}
+
+void EpochAssembler::countSequence(std::uint64_t sequence) {
+  if (!have_last_sequence_) {
     have_last_sequence_ = true;
-    last_sequence_ = d.sequence;
+    last_sequence_ = sequence;
+    return;
   }
+  const std::uint64_t ahead = (sequence - last_sequence_) & sequence_mask_;
+  const std::uint64_t behind = (last_sequence_ - sequence) & sequence_mask_;
+  if (ahead == 0) return;  // the newest epoch's counter again (a late frame of it): nothing skipped
+  if (ahead != 1 && behind <= reorder_window_) {
+    // An epoch that arrives after a newer one: reordered, not a skip of nearly the whole
+    // counter range. If it was counted missing, it no longer is.
+    ++counters_.reordered_epochs;
+    const std::uint64_t bit = 1ull << (behind - 1);
+    if ((missing_recent_ & bit) != 0) {
+      missing_recent_ &= ~bit;
+      --counters_.missing_epochs;
+      const bool newer_missing = behind >= 2 && (missing_recent_ & (bit >> 1)) != 0;
+      const bool older_missing = behind < 64 && (missing_recent_ & (bit << 1)) != 0;
+      if (!newer_missing && !older_missing && counters_.sequence_gaps > 0) --counters_.sequence_gaps;  // gap filled
+      if (newer_missing && older_missing) ++counters_.sequence_gaps;    // its gap is split in two
+    }
+    return;  // the counter stays at the newest epoch
+  }
+  if (ahead > 1) {
+    ++counters_.sequence_gaps;
+    counters_.missing_epochs += ahead - 1;
+  }
+  // Bit k: the epoch k + 1 behind the newest was skipped.
+  missing_recent_ = ahead >= 64 ? 0 : missing_recent_ << ahead;
+  const std::uint64_t skipped = std::min<std::uint64_t>(ahead - 1, 64);
+  if (skipped > 0) missing_recent_ |= skipped == 64 ? ~0ull : (1ull << skipped) - 1;
+  last_sequence_ = sequence;
 }
 
 void EpochAssembler::add(const DecodedFrame& d) {

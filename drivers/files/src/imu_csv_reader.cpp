@@ -17,6 +17,12 @@ bool ImuCsvReader::next(core::ImuSample* sample) {
   if (!std::isfinite(t)) {
     throw CsvError(path() + ":" + std::to_string(csv_.lineNumber()) + ": column 't': time must be a finite number");
   }
+  // Times are int64 nanoseconds: beyond ±9.22e9 s llround overflows (every sample would then
+  // look like a duplicate of the last).
+  if (std::abs(t) > kMaxImuCsvTimeS) {
+    throw CsvError(path() + ":" + std::to_string(csv_.lineNumber()) + ": column 't': time " + std::to_string(t) +
+                   " s is beyond ±9e9 s (times are held as int64 nanoseconds)");
+  }
   sample->t_ns = std::llround(t * 1e9);
   sample->gyro_rad_s = {row_[1], row_[2], row_[3]};
   sample->accel_m_s2 = {row_[4], row_[5], row_[6]};

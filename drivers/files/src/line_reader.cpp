@@ -8,6 +8,7 @@
 #include <cstring>
 #include <memory>
 
+#include "gzip_end.hpp"
 #include "headingd/files/input_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
@@ -58,15 +59,17 @@ bool LineReader::refill() {
   }
   const std::size_t room = std::min<std::size_t>(capacity_ - end_, INT_MAX);
   const int n = gzread(static_cast<gzFile>(file_), buffer_.get() + end_, static_cast<unsigned>(room));
-  if (n < 0) {
-    int code = 0;
-    throw CsvError(path_ + ": read error: " + gzerror(static_cast<gzFile>(file_), &code));
-  }
+  if (n < 0) throw CsvError(gzipReadErrorMessage(static_cast<gzFile>(file_), path_));
   if (n == 0) {
+    // A cut gzip stream is an error, not an end: the rows read so far are not the whole file.
+    if (gzipEndMissing(static_cast<gzFile>(file_))) {
+      throw CsvError(gzipEndMissingMessage(path_, bytes_read_) + ", after line " + std::to_string(line_number_));
+    }
     at_eof_ = true;
     return false;
   }
   end_ += static_cast<std::size_t>(n);
+  bytes_read_ += static_cast<std::uint64_t>(n);
   return true;
 }
 

@@ -15,7 +15,10 @@ constexpr std::int64_t kDayNs = 86'400'000'000'000;
 }  // namespace
 
 NmeaLogFixes readNmeaLogFixes(const std::string& path) {
-  const std::string text = readMaybeGzipFile(path, kWholeLogLimit);
+  return parseNmeaLogFixes(readMaybeGzipFile(path, kWholeLogLimit));
+}
+
+NmeaLogFixes parseNmeaLogFixes(std::string_view text) {
   std::vector<std::uint8_t> bytes;
   nmea::CommentFilter comments;
   comments.filter({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, bytes);

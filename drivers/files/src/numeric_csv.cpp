@@ -5,12 +5,13 @@
 #include <cerrno>
 #include <cstring>
 
+#include "gzip_end.hpp"
 #include "headingd/files/csv_row_reader.hpp"
 #include "headingd/files/input_file.hpp"
 
 namespace headingd::files {
 
-std::string readMaybeGzipFile(const std::string& path, std::uint64_t limit) {
+MaybeCutText readMaybeGzipLog(const std::string& path, std::uint64_t limit) {
   gzFile file = nullptr;
   try {
     InputFile input(path, limit);
@@ -20,15 +21,15 @@ std::string readMaybeGzipFile(const std::string& path, std::uint64_t limit) {
   } catch (const FileError& e) {
     throw CsvError(e.what());
   }
-  std::string data;
+  MaybeCutText result;
+  std::string& data = result.text;
   char buffer[1 << 16];
   while (true) {
     const int n = gzread(file, buffer, sizeof buffer);
     if (n < 0) {
-      int code = 0;
-      const std::string message = gzerror(file, &code);
+      const std::string message = gzipReadErrorMessage(file, path);
       gzclose(file);
-      throw CsvError(path + ": read error: " + message);
+      throw CsvError(message);
     }
     if (n == 0) break;
     data.append(buffer, static_cast<std::size_t>(n));
@@ -37,8 +38,15 @@ std::string readMaybeGzipFile(const std::string& path, std::uint64_t limit) {
       throw CsvError(path + ": holds more than the " + bytesText(limit) + " such a file may have");
     }
   }
+  result.end_missing = gzipEndMissing(file);
   gzclose(file);
-  return data;
+  return result;
+}
+
+std::string readMaybeGzipFile(const std::string& path, std::uint64_t limit) {
+  MaybeCutText read = readMaybeGzipLog(path, limit);
+  if (read.end_missing) throw CsvError(gzipEndMissingMessage(path, read.text.size()));
+  return std::move(read.text);
 }
 
 NumericCsv readNumericCsv(const std::string& path, const std::vector<std::string>& required,

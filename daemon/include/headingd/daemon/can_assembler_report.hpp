@@ -15,6 +15,7 @@ inline void reportAssemblerCounters(SourceReport& out, std::size_t* i, const can
   out.set((*i)++, "incomplete_epochs", a.incomplete_epochs);
   out.set((*i)++, "sequence_gaps", a.sequence_gaps);
   out.set((*i)++, "missing_epochs", a.missing_epochs);
+  out.set((*i)++, "reordered_epochs", a.reordered_epochs);
   out.set((*i)++, "duplicate_frames", a.duplicate_frames);
   out.set((*i)++, "late_frames", a.late_frames);
   out.set((*i)++, "late_mag_frames", a.late_mag_frames);

@@ -10,6 +10,10 @@
 // the monotonic time that frame was due. The open epoch is flushed on the log's time axis
 // (before each frame, at that frame's time; can/epoch_flush.hpp), so the samples do not
 // depend on how late the timer fired.
+//
+// Bad times (log_frame_times.hpp): frames far off the times around them are skipped, steps of
+// the log's clock are played without waiting; both counted. A gzip log cut short is played
+// as far as it goes (log_end_missing on STATUS).
 #include <atomic>
 #include <boost/asio/steady_timer.hpp>
 #include <cstdint>
@@ -42,7 +46,8 @@ std::unique_ptr<Source> createCandumpLogSource(const SourceConfig& config, Sourc
 class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
  public:
   // Reads the DBC file and the whole log (throws core::ConfigError for the DBC and mapping,
-  // files::CsvError when the log cannot be read). Lines that are not frames are counted.
+  // files::CsvError when the log cannot be read or its gzip stream is corrupt). Lines that are
+  // not frames, frames with outlying times and a cut gzip end are counted and logged.
   CandumpLogSource(std::string name, const CandumpLogSourceConfig& config, AtEnd at_end, const PlaybackClock* clock,
                    std::uint16_t source_index, SampleRing<ImuRingEntry>* imu_ring);
   ~CandumpLogSource() override;
@@ -52,7 +57,7 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
   bool wantsExit() const override { return finished_.load() && at_end_ == AtEnd::kExit; }
   bool playing() const override { return !finished_.load(); }
 
-  // Timestamp of the log's first frame (its own clock), nullopt for a log without frames.
+  // Timestamp of the log's first frame played (its own clock), nullopt for a log without frames.
   std::optional<std::int64_t> firstLogNs() const;
   std::size_t frameCount() const { return frames_.size(); }
   const can::CandumpCounters& readerCounters() const { return reader_counters_; }
@@ -63,6 +68,9 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
   void playDue();  // on the io thread: every frame due by now, then the timer for the next
   void pushSamples(const can::AssembledSamples& samples);
   void finish();
+  // Drops the outliers of `all` into frames_ and their playback times into play_ns_.
+  void placeFrames(const std::string& path, const std::vector<can::CanFrame>& all,
+                   const std::vector<std::uint64_t>& lines);
 
   AtEnd at_end_;
   const PlaybackClock* clock_;
@@ -72,8 +80,12 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
   std::unique_ptr<can::ImuFrameCodec> codec_;
   std::unique_ptr<can::EpochAssembler> assembler_;
   std::int64_t flush_age_ns_ = 0;
-  std::vector<can::CanFrame> frames_;
+  std::vector<can::CanFrame> frames_;   // in file order, outliers left out
+  std::vector<std::int64_t> play_ns_;   // per frame: its time on the playback axis (log_frame_times.hpp)
   can::CandumpCounters reader_counters_;
+  bool end_missing_ = false;            // the gzip stream ended before its trailer
+  std::uint64_t time_outlier_frames_ = 0;
+  std::uint64_t time_steps_ = 0;
   std::size_t next_frame_ = 0;
 
   boost::asio::steady_timer timer_;

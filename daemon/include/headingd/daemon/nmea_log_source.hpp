@@ -23,7 +23,8 @@
 
 namespace headingd::daemon {
 
-// [nmea_log]: an NMEA 0183 log (plain text) played by drivers/nmea's NmeaLogPlayer.
+// [nmea_log]: an NMEA 0183 log (plain or gzip) played by drivers/nmea's NmeaLogPlayer. A gzip
+// log cut short is played as far as it goes (log_end_missing on STATUS).
 struct NmeaLogSourceConfig : SourceConfig {
   std::string path;
   // Added to the sentences' UTC to put the epochs on the candump log's clock (a recorder
@@ -35,7 +36,8 @@ std::unique_ptr<Source> createNmeaLogSource(const SourceConfig& config, SourceCo
 
 class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
  public:
-  // Reads the whole log (throws std::runtime_error naming the file when it cannot).
+  // Reads the whole log (throws files::CsvError naming the file when it cannot, or when its
+  // gzip stream is corrupt).
   NmeaLogSource(std::string name, const NmeaLogSourceConfig& config, const PlaybackConfig& playback,
                 const PlaybackClock* clock, std::uint16_t source_index, SampleRing<GpsRingEntry>* gps_ring);
   ~NmeaLogSource() override;
@@ -62,6 +64,7 @@ class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
   std::int64_t first_day_ns_ = 0;
   std::int64_t offset_ns_ = 0;
   std::size_t epochs_in_log_ = 0;
+  bool end_missing_ = false;  // the gzip stream ended before its trailer
   std::optional<NmeaLogTime> log_time_;  // made at start()
 
   std::unique_ptr<nmea::NmeaLogPlayer> player_;

@@ -60,11 +60,16 @@ NmeaLogPlayer::NmeaLogPlayer(boost::asio::io_context& io, NmeaLogPlayerConfig co
   if (!(config_.max_gap_s > 0.0)) throw std::invalid_argument("NMEA log player: max_gap_s must be positive");
   // Held whole (it is indexed into epochs before playing), so limited like every log read whole.
   std::vector<std::uint8_t> raw;
-  try {
-    const std::string text = files::readWholeFile(config_.path, files::kWholeLogLimit);
-    raw.assign(text.begin(), text.end());
-  } catch (const files::FileError& e) {
-    throw std::runtime_error(std::string(e.what()) + " (the NMEA log)");
+  if (config_.contents) {
+    raw.assign(config_.contents->begin(), config_.contents->end());
+    config_.contents.reset();
+  } else {
+    try {
+      const std::string text = files::readWholeFile(config_.path, files::kWholeLogLimit);
+      raw.assign(text.begin(), text.end());
+    } catch (const files::FileError& e) {
+      throw std::runtime_error(std::string(e.what()) + " (the NMEA log)");
+    }
   }
   CommentFilter comments;
   comments.filter(raw, bytes_);

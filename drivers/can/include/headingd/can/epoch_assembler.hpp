@@ -34,7 +34,8 @@ struct AssemblerCounters {
   std::uint64_t samples_with_mag = 0;
   std::uint64_t incomplete_epochs = 0;   // epochs that ended without all gyro and accel axes
   std::uint64_t sequence_gaps = 0;       // times the epoch counter skipped
-  std::uint64_t missing_epochs = 0;      // epochs the counter skipped over, in total
+  std::uint64_t missing_epochs = 0;      // epochs the counter skipped over, in total (less those that came late)
+  std::uint64_t reordered_epochs = 0;    // epochs whose counter is behind a newer one's (arrived late)
   std::uint64_t duplicate_frames = 0;    // a message repeated within one counted epoch
   std::uint64_t late_frames = 0;         // gyro/accel frames of an epoch already released
   std::uint64_t late_mag_frames = 0;     // magnetometer frames after their epoch: used for the next sample
@@ -75,6 +76,9 @@ class EpochAssembler {
   };
   bool sameEpoch(const EpochKey& key, const DecodedFrame& d, std::int64_t t_ns) const;
   void open(const DecodedFrame& d, std::int64_t t_ns);
+  // Counts a new epoch's counter: a skip ahead (sequence_gaps, missing_epochs) or an epoch up
+  // to reorder_window_ behind the newest (reordered_epochs; no longer missing if it was).
+  void countSequence(std::uint64_t sequence);
   void add(const DecodedFrame& d);
   void close(AssembledSamples& out);
   void release(AssembledSamples& out);
@@ -87,7 +91,9 @@ class EpochAssembler {
   std::array<double, kAxisCount> values_{};
   EpochKey released_;  // the last epoch released, to recognise late frames
   bool have_last_sequence_ = false;
-  std::uint64_t last_sequence_ = 0;
+  std::uint64_t last_sequence_ = 0;  // the newest epoch's counter
+  std::uint64_t reorder_window_ = 1;
+  std::uint64_t missing_recent_ = 0;  // bit k: the epoch k + 1 behind the newest was skipped
   bool carried_mag_valid_ = false;
   std::array<double, 3> carried_mag_{};
   AssemblerCounters counters_;

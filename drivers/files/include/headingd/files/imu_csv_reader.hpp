@@ -9,6 +9,10 @@
 
 namespace headingd::files {
 
+// The largest |t| read, in seconds: int64 nanoseconds hold up to 9.22e9 s (year 2262 as UNIX
+// time); the candump reader takes the same bound.
+inline constexpr double kMaxImuCsvTimeS = 9e9;
+
 class ImuCsvReader {
  public:
   // Opens the file and reads its header; throws CsvError (file, line 1, column) when a
@@ -17,7 +21,7 @@ class ImuCsvReader {
 
   // The next sample in file order; false at the end of the file. Without all three mag_*
   // columns every sample has has_mag = false. Throws CsvError naming file, line and column
-  // for a malformed row or a time that is not finite.
+  // for a malformed row or a time that is not finite or beyond ±kMaxImuCsvTimeS.
   bool next(core::ImuSample* sample);
   bool hasMag() const { return has_mag_; }
   std::size_t rows() const { return csv_.rows(); }

@@ -3,6 +3,7 @@
 // buffer, so memory stays flat whatever the file's length. A line is handed out as a view
 // into the buffer, valid until the next call; no copy, no allocation per line.
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -22,8 +23,9 @@ class LineReader {
   LineReader& operator=(const LineReader&) = delete;
 
   // The next line without its '\n' (a '\r' before it stays); a last line without '\n' is a
-  // line too. False at the end of the file. Throws CsvError "PATH: read error: ..." when
-  // zlib cannot read on (e.g. a truncated gzip stream).
+  // line too. False at the end of the file. Throws CsvError naming the file when zlib cannot
+  // read on: "PATH: corrupt gzip file: ..." (data, CRC or length check failed), "PATH:
+  // truncated gzip file: ..." (the stream ends before its trailer), "PATH: read error: ...".
   bool next(std::string_view* line);
   // 1-based number of the line last handed out (0 before the first).
   std::size_t lineNumber() const { return line_number_; }
@@ -41,6 +43,7 @@ class LineReader {
   std::size_t end_ = 0;     // one past the last byte read
   bool at_eof_ = false;
   std::size_t line_number_ = 0;
+  std::uint64_t bytes_read_ = 0;  // of text (decompressed), for the truncation message
 };
 
 }  // namespace headingd::files

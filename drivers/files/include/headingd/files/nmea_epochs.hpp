@@ -9,6 +9,7 @@
 // more than 12 hours are a midnight rollover (a day is added). All sentences of one epoch
 // (same UTC time of day) form one observation, with the fix as it stands after the last.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "headingd/core/gps_observation.hpp"
@@ -25,6 +26,8 @@ struct NmeaLogFixes {
   nmea::Counters counters;
 };
 NmeaLogFixes readNmeaLogFixes(const std::string& path);
+// The same from the log's text, read by the caller.
+NmeaLogFixes parseNmeaLogFixes(std::string_view text);
 
 struct NmeaEpochs {
   std::vector<core::GpsObservation> epochs;  // in time order

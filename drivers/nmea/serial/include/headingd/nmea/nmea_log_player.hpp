@@ -29,6 +29,9 @@ struct NmeaLogPlayerConfig {
   double speed = 1.0;        // 1: real time; 10: ten times faster (tests)
   double max_gap_s = 5.0;    // longest wait between two groups, in log time
   ParserConfig parser;
+  // The log's text when the caller has read it already (decompressed, say); `path` then only
+  // names it in messages. Without it the file at `path` is read as it is.
+  std::optional<std::string> contents = std::nullopt;
 };
 
 struct NmeaLogPlayerCounters {
