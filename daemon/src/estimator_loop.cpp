@@ -333,6 +333,7 @@ LoopCounters EstimatorLoop::loopCounters() const {
   c.gps_epochs = gps_epochs_processed_;
   c.gps_epochs_used_for_declination = pipeline_.gpsEpochsUsedForDeclination();
   c.gps_epochs_forced_out = gps_epochs_forced_;
+  c.gps_values_ignored = pipeline_.gpsValuesIgnored();
   return c;
 }
 

@@ -38,11 +38,14 @@ class HeadingPipeline {
   HeadingPipeline(const EstimatorParams& params, const WorldMagneticModel* wmm);
 
   SampleVerdict process(const ImuSample& sample);
+  // Values it cannot use (non-finite, a latitude beyond ±90°, a negative speed or HDOP, a
+  // variation beyond ±180°) are left out of the epoch and counted: gpsValuesIgnored().
   void processGps(const GpsObservation& gps);
 
   const HeadingOutput& output() const { return out_; }
   const Estimator& estimator() const { return estimator_; }
   std::uint64_t gpsEpochsUsedForDeclination() const { return course_minus_heading_.epochs(); }
+  std::uint64_t gpsValuesIgnored() const { return gps_values_ignored_; }
 
  private:
   bool courseGatesPass(const GpsObservation& gps, double sensor_heading) const;
@@ -68,6 +71,7 @@ class HeadingPipeline {
   double previous_course_rad_ = 0.0;
   double previous_sensor_heading_rad_ = 0.0;
   bool previous_epoch_added_ = false;  // the previous GPS epoch counted for the declination
+  std::uint64_t gps_values_ignored_ = 0;
 };
 
 }  // namespace headingd::core
