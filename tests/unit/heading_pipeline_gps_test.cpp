@@ -102,7 +102,7 @@ TEST(HeadingPipelineGps, DateWhereTheModelOverflowsIsLeftOut) {
   std::int64_t t = 0;
   feedStill(pipeline, t);
   GpsObservation g = fixAt(t);
-  g.decimal_year = 1e300;
+  g.decimal_year = std::numeric_limits<double>::max();  // finite, but the secular change overflows
   pipeline.processGps(g);
   EXPECT_EQ(pipeline.output().declination_sources, kDeclNone);
   EXPECT_EQ(pipeline.gpsValuesIgnored(), 1u);
