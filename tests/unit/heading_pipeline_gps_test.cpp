@@ -32,6 +32,13 @@ void feedStill(HeadingPipeline& pipeline, std::int64_t& t_ns) {
   }
 }
 
+// A pipeline after a second of still samples, and the time of the last one.
+struct StillPipeline {
+  explicit StillPipeline(const WorldMagneticModel* wmm) : pipeline(EstimatorParams{}, wmm) { feedStill(pipeline, t); }
+  HeadingPipeline pipeline;
+  std::int64_t t = 0;
+};
+
 GpsObservation fixAt(std::int64_t t_ns) {
   GpsObservation g;
   g.t_ns = t_ns;
@@ -51,9 +58,9 @@ void expectFiniteOutput(const HeadingPipeline& p) {
 }
 
 TEST(HeadingPipelineGps, NanMagneticVariationIsLeftOutAndCounted) {
-  HeadingPipeline pipeline(EstimatorParams{}, nullptr);
-  std::int64_t t = 0;
-  feedStill(pipeline, t);
+  StillPipeline still(nullptr);
+  HeadingPipeline& pipeline = still.pipeline;
+  std::int64_t& t = still.t;
   GpsObservation g = fixAt(t);
   g.magvar_rad = kNaN;
   pipeline.processGps(g);
@@ -63,9 +70,9 @@ TEST(HeadingPipelineGps, NanMagneticVariationIsLeftOutAndCounted) {
 }
 
 TEST(HeadingPipelineGps, VariationBeyond180DegreesIsLeftOut) {
-  HeadingPipeline pipeline(EstimatorParams{}, nullptr);
-  std::int64_t t = 0;
-  feedStill(pipeline, t);
+  StillPipeline still(nullptr);
+  HeadingPipeline& pipeline = still.pipeline;
+  std::int64_t& t = still.t;
   GpsObservation g = fixAt(t);
   g.magvar_rad = 200.0 * std::numbers::pi / 180.0;
   pipeline.processGps(g);
@@ -79,9 +86,9 @@ TEST(HeadingPipelineGps, VariationBeyond180DegreesIsLeftOut) {
 
 TEST(HeadingPipelineGps, ImpossiblePositionIsNoFixAndDoesNotThrow) {
   const WorldMagneticModel wmm = wmm2025();
-  HeadingPipeline pipeline(EstimatorParams{}, &wmm);
-  std::int64_t t = 0;
-  feedStill(pipeline, t);
+  StillPipeline still(&wmm);
+  HeadingPipeline& pipeline = still.pipeline;
+  std::int64_t& t = still.t;
   GpsObservation g = fixAt(t);
   g.position->latitude_deg = 200.0;
   EXPECT_NO_THROW(pipeline.processGps(g));
@@ -98,9 +105,9 @@ TEST(HeadingPipelineGps, ImpossiblePositionIsNoFixAndDoesNotThrow) {
 
 TEST(HeadingPipelineGps, DateWhereTheModelOverflowsIsLeftOut) {
   const WorldMagneticModel wmm = wmm2025();
-  HeadingPipeline pipeline(EstimatorParams{}, &wmm);
-  std::int64_t t = 0;
-  feedStill(pipeline, t);
+  StillPipeline still(&wmm);
+  HeadingPipeline& pipeline = still.pipeline;
+  std::int64_t& t = still.t;
   GpsObservation g = fixAt(t);
   g.decimal_year = std::numeric_limits<double>::max();  // finite, but the secular change overflows
   pipeline.processGps(g);
@@ -110,9 +117,9 @@ TEST(HeadingPipelineGps, DateWhereTheModelOverflowsIsLeftOut) {
 }
 
 TEST(HeadingPipelineGps, NegativeSpeedAndHdopAreLeftOut) {
-  HeadingPipeline pipeline(EstimatorParams{}, nullptr);
-  std::int64_t t = 0;
-  feedStill(pipeline, t);
+  StillPipeline still(nullptr);
+  HeadingPipeline& pipeline = still.pipeline;
+  std::int64_t& t = still.t;
   GpsObservation g = fixAt(t);
   g.speed_mps = -3.0;
   g.hdop = -1.0;
@@ -125,9 +132,9 @@ TEST(HeadingPipelineGps, NegativeSpeedAndHdopAreLeftOut) {
 // Corrupt stamps anywhere in the int64 range: the intervals between them saturate instead of
 // overflowing (the sanitizer build, tools/scripts/sanitize.sh, checks there is no overflow).
 TEST(HeadingPipelineGps, StampsAtTheEndsOfTheRangeDoNotOverflow) {
-  HeadingPipeline pipeline(EstimatorParams{}, nullptr);
-  std::int64_t t = 0;
-  feedStill(pipeline, t);
+  StillPipeline still(nullptr);
+  HeadingPipeline& pipeline = still.pipeline;
+  std::int64_t& t = still.t;
   constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
   constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
   pipeline.processGps(fixAt(kMax));
