@@ -3,9 +3,51 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace headingd::core {
+namespace {
+
+// later - earlier, saturated: corrupt stamps may lie anywhere in the int64 range, and their
+// difference must not overflow (it reads as "very long ago" or "far ahead" instead).
+std::int64_t elapsedNs(std::int64_t later, std::int64_t earlier) {
+  std::int64_t d = 0;
+  if (!__builtin_sub_overflow(later, earlier, &d)) return d;
+  return later > earlier ? std::numeric_limits<std::int64_t>::max() : std::numeric_limits<std::int64_t>::min();
+}
+
+constexpr double kPi = std::numbers::pi;
+
+// The observation with every value the pipeline cannot use left out (counted in `ignored`):
+// non-finite numbers, a latitude beyond ±90°, a negative speed or HDOP, a magnetic
+// variation beyond ±180°.
+// `first_problem` names the first value left out (nullptr when none was).
+GpsObservation usableValues(const GpsObservation& gps, std::uint64_t& ignored, const char** first_problem) {
+  GpsObservation g = gps;
+  const auto drop = [&ignored, first_problem](auto& value, const char* problem) {
+    value.reset();
+    ++ignored;
+    if (*first_problem == nullptr) *first_problem = problem;
+  };
+  if (g.position && !(std::abs(g.position->latitude_deg) <= 90.0 && std::isfinite(g.position->longitude_deg) &&
+                      std::isfinite(g.position->height_km))) {
+    drop(g.position, "position beyond ±90° latitude or not finite");
+    g.fix_ok = false;  // a fix at an impossible place is no fix
+  }
+  if (g.decimal_year && !std::isfinite(*g.decimal_year)) drop(g.decimal_year, "date not finite");
+  if (g.course_rad && !std::isfinite(*g.course_rad)) drop(g.course_rad, "course not finite");
+  if (g.speed_mps && !(*g.speed_mps >= 0.0 && std::isfinite(*g.speed_mps))) {
+    drop(g.speed_mps, "speed negative or not finite");
+  }
+  if (g.hdop && !(*g.hdop >= 0.0 && std::isfinite(*g.hdop))) drop(g.hdop, "HDOP negative or not finite");
+  if (g.magvar_rad && !(std::abs(*g.magvar_rad) <= kPi)) {
+    drop(g.magvar_rad, "magnetic variation beyond ±180° or not finite");
+  }
+  return g;
+}
+
+}  // namespace
 
 const char* declinationSourceName(unsigned s) {
   static const char* const kNames[8] = {"none",    "wmm",         "gps",         "wmm+gps",
@@ -41,7 +83,8 @@ SampleVerdict HeadingPipeline::process(const ImuSample& s) {
   // processGps changes). Before the first such epoch, or after one without, the heading would
   // be dropped unread, so the samples are not summed: without GPS the compass costs nothing.
   if (previous_gps_ns_) epoch_compass_.add(gyro, s.accel_m_s2, s.has_mag ? &s.mag_uT : nullptr, a.dt_s);
-  const bool walking = last_walking_gps_ns_ && s.t_ns - *last_walking_gps_ns_ < 2'000'000'000 && a.head_height > 0.8;
+  const bool walking =
+      last_walking_gps_ns_ && elapsedNs(s.t_ns, *last_walking_gps_ns_) < 2'000'000'000 && a.head_height > 0.8;
   if (walking && a.valid) {
     gait_.update(gyro, s.accel_m_s2, a.dt_s);
   } else {
@@ -57,13 +100,14 @@ bool HeadingPipeline::courseGatesPass(const GpsObservation& gps, double sensor_h
   if (*gps.speed_mps < p_.decl_min_speed_mps) return false;
   if (gps.hdop && *gps.hdop > p_.decl_max_hdop) return false;
   if (a.head_height < 0.8) return false;  // upright: the x-axis heading is well defined
-  if (ever_disturbed_ && gps.t_ns - last_disturbed_ns_ < static_cast<std::int64_t>(p_.decl_min_undisturbed_s * 1e9)) {
+  if (ever_disturbed_ &&
+      elapsedNs(gps.t_ns, last_disturbed_ns_) < static_cast<std::int64_t>(p_.decl_min_undisturbed_s * 1e9)) {
     return false;
   }
   // Walking straight: neither the course nor the magnetic heading turned faster than the
   // limit since the previous epoch (which must be recent).
   if (!previous_gps_ns_) return false;
-  const double dt = static_cast<double>(gps.t_ns - *previous_gps_ns_) * 1e-9;
+  const double dt = static_cast<double>(elapsedNs(gps.t_ns, *previous_gps_ns_)) * 1e-9;
   if (!(dt > 0.0 && dt <= 2.0)) return false;
   const double course_rate = std::abs(wrapAngle(*gps.course_rad - previous_course_rad_)) / dt;
   const double heading_rate = std::abs(wrapAngle(sensor_heading - previous_sensor_heading_rad_)) / dt;
@@ -75,37 +119,23 @@ std::size_t HeadingPipeline::compassMinSamples(std::int64_t gps_t_ns) const {
   // a gap in the IMU data gives no compass heading.
   const double period_s = estimator_.output().dt_s;
   if (!previous_gps_ns_ || !(period_s > 0.0)) return 1;
-  const double interval_s = static_cast<double>(gps_t_ns - *previous_gps_ns_) * 1e-9;
+  const double interval_s = static_cast<double>(elapsedNs(gps_t_ns, *previous_gps_ns_)) * 1e-9;
   return static_cast<std::size_t>(std::max(1.0, 0.5 * interval_s / period_s));
 }
 
-const char* gpsObservationProblem(const GpsObservation& gps) {
-  const auto finite = [](const std::optional<double>& v) { return !v || std::isfinite(*v); };
-  if (const auto& p = gps.position) {
-    if (!(std::fabs(p->latitude_deg) <= 90.0)) return "latitude outside [-90, 90] degrees";
-    if (!(std::fabs(p->longitude_deg) <= 180.0)) return "longitude outside [-180, 180] degrees";
-    if (!std::isfinite(p->height_km)) return "height not finite";
-  }
-  if (!finite(gps.decimal_year)) return "date not finite";
-  if (!finite(gps.course_rad)) return "course not finite";
-  if (!finite(gps.speed_mps) || (gps.speed_mps && *gps.speed_mps < 0.0)) return "speed not finite or negative";
-  if (!finite(gps.hdop) || (gps.hdop && *gps.hdop < 0.0)) return "hdop not finite or negative";
-  if (gps.magvar_rad && !(std::fabs(*gps.magvar_rad) <= std::numbers::pi)) {
-    return "magnetic variation not within [-180, 180] degrees";
-  }
-  return nullptr;
-}
-
-bool HeadingPipeline::processGps(const GpsObservation& gps) {
-  if (gpsObservationProblem(gps) != nullptr) {
-    ++gps_epochs_rejected_;
-    return false;
-  }
+const char* HeadingPipeline::processGps(const GpsObservation& given) {
+  const char* problem = nullptr;
+  const GpsObservation gps = usableValues(given, gps_values_ignored_, &problem);
   if (gps.fix_ok && gps.position && gps.decimal_year && wmm_ != nullptr) {
     const MagneticFieldElements field = wmm_->field(*gps.position, *gps.decimal_year);
     constexpr double kRad = std::numbers::pi / 180.0;
-    estimator_.setReferenceField(field.f_nT * 1e-3, field.inclination_deg * kRad);
-    wmm_declination_rad_ = field.declination_deg * kRad;
+    if (std::isfinite(field.f_nT) && std::isfinite(field.inclination_deg) && std::isfinite(field.declination_deg)) {
+      estimator_.setReferenceField(field.f_nT * 1e-3, field.inclination_deg * kRad);
+      wmm_declination_rad_ = field.declination_deg * kRad;
+    } else {
+      ++gps_values_ignored_;  // a date so far from the model's epoch that the field overflows
+      if (problem == nullptr) problem = "date where the World Magnetic Model's field is not finite";
+    }
   }
   if (gps.magvar_rad) receiver_magvar_rad_ = *gps.magvar_rad;
   if (gps.fix_ok && gps.speed_mps && *gps.speed_mps >= p_.gait_min_speed_mps) last_walking_gps_ns_ = gps.t_ns;
@@ -127,7 +157,7 @@ bool HeadingPipeline::processGps(const GpsObservation& gps) {
   }
   updateDeclination();
   updateOutput();
-  return true;
+  return problem;
 }
 
 void HeadingPipeline::updateDeclination() {

@@ -39,7 +39,9 @@ void rejectUnknownTables(const toml::table& doc, const std::string& source, cons
   std::string expected;
   for (const std::string& t : names) expected += (expected.empty() ? "[" : ", [") + t + "]";
   for (auto&& [key, node] : doc) {
-    const bool known = std::any_of(names.begin(), names.end(), [&](const std::string& t) { return key.str() == t; });
+    // A copy of the binding's name for the lambda: clang before 16 cannot capture bindings.
+    const std::string_view name = key.str();
+    const bool known = std::any_of(names.begin(), names.end(), [&](const std::string& t) { return name == t; });
     if (!known) {
       throw ConfigError(sourceLine(source, node) + ": unknown table or key '" + std::string(key.str()) +
                         "' (expected " + expected + ")");

@@ -266,9 +266,10 @@ void EstimatorLoop::processImu(const ImuRingEntry& raw, std::int64_t utime_us) {
 void EstimatorLoop::processGps(const GpsRingEntry& e, std::int64_t utime_us) {
   if (recorder_ != nullptr) recorder_->gpsPlaced(e.observation.t_ns, imu_processed_);
   std::uint64_t suppressed = 0;
-  if (!pipeline_.processGps(e.observation) && gps_rejected_log_.allow(e.arrival_mono_ns, &suppressed)) {
-    spdlog::warn("GPS epoch from {} rejected: {} ({} rejected so far, {} not logged)", source_names_[e.source_index],
-                 core::gpsObservationProblem(e.observation), pipeline_.gpsEpochsRejected(), suppressed);
+  const char* problem = pipeline_.processGps(e.observation);
+  if (problem != nullptr && gps_rejected_log_.allow(e.arrival_mono_ns, &suppressed)) {
+    spdlog::warn("GPS epoch from {}: value left out: {} ({} values left out so far, {} lines not logged)",
+                 source_names_[e.source_index], problem, pipeline_.gpsValuesIgnored(), suppressed);
   }
   ++gps_epochs_processed_;
   if (config_.lcm.publish_gps) {
@@ -340,7 +341,7 @@ LoopCounters EstimatorLoop::loopCounters() const {
   c.gps_epochs = gps_epochs_processed_;
   c.gps_epochs_used_for_declination = pipeline_.gpsEpochsUsedForDeclination();
   c.gps_epochs_forced_out = gps_epochs_forced_;
-  c.gps_epochs_rejected = pipeline_.gpsEpochsRejected();
+  c.gps_values_ignored = pipeline_.gpsValuesIgnored();
   return c;
 }
 

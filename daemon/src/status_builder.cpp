@@ -124,7 +124,7 @@ void fillCounters(status_t& m, const core::EstimatorCounters& estimator, const L
   add("gps_epochs", loop.gps_epochs);
   add("gps_epochs_used_for_declination", loop.gps_epochs_used_for_declination);
   add("gps_epochs_forced_out", loop.gps_epochs_forced_out);
-  add("gps_epochs_rejected", loop.gps_epochs_rejected);
+  add("gps_values_ignored", loop.gps_values_ignored);
   m.num_counters = static_cast<std::int32_t>(i);
 }
 

@@ -56,6 +56,17 @@ TEST(CalibrationFile, RoundTrip) {
   EXPECT_EQ(*b.provenance.coverage, 0.69);
 }
 
+// Found by fuzzing (tests/fuzz/corpus/calibration_toml/escapes): a string holding a control
+// character (read from an escape) was written back raw, which TOML does not allow.
+TEST(CalibrationFile, StringsWithControlCharactersAreWrittenBackReadable) {
+  const core::ImuCalibration a =
+      core::parseImuCalibration("[calibration]\nmethod = \"a\\u0001\\t\\u007F\\\"b\"\n", "calib.toml");
+  ASSERT_EQ(a.provenance.method, "a\x01\t\x7F\"b");
+  const std::string written = core::formatImuCalibration(a);
+  EXPECT_NE(written.find("method = \"a\\u0001\t\\u007F\\\"b\""), std::string::npos) << written;
+  EXPECT_EQ(core::parseImuCalibration(written, "written.toml").provenance.method, a.provenance.method);
+}
+
 TEST(CalibrationFile, EmptyDocumentIsIdentity) {
   const core::ImuCalibration c = core::parseImuCalibration("", "empty.toml");
   EXPECT_EQ(c.mag.D, Mat3::Identity());

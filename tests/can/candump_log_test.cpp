@@ -69,6 +69,7 @@ TEST(CandumpLog, RejectsBadLinesWithAReason) {
       "(1.0) can0 4FFFFFFF#00",
       "(1.0) can0 123#0",
       "(1.0) can0 123#GG",
+      "(1.0) c\x05" "n0 123#00",  // a control byte in the interface name
       "(1.0) can0 123#001122334455667788",
       "(1.0) can0 123##1DEADBEEF",
       "(1.0) can0 123#00 extra words",
@@ -99,6 +100,15 @@ TEST(CandumpLog, RejectsSignedAndOutOfRangeTimes) {
   EXPECT_FALSE(reader.next());
   EXPECT_EQ(reader.counters().bad_lines, 1u);
   EXPECT_EQ(reader.counters().first_bad_line, 2u);
+}
+
+// Found by fuzzing (tests/fuzz/corpus/candump_line/regression-nul-in-interface): a NUL in
+// the interface name was accepted, and the line written back lost the rest of the name.
+TEST(CandumpLog, RejectsANulInTheInterfaceName) {
+  using namespace std::string_view_literals;
+  std::string reason;
+  EXPECT_FALSE(parseCandumpLine("(1780315254.580000) \0\x05n0 122#8EFCFFF4FD686120"sv, &reason));
+  EXPECT_EQ(reason, "an interface name after the timestamp");
 }
 
 TEST(CandumpLog, FormatParsesBack) {

@@ -9,7 +9,6 @@
 #include <numbers>
 #include <sstream>
 #include <sys/socket.h>
-#include <sys/stat.h>
 #include <sys/un.h>
 
 #include "daemon_test_support.hpp"
@@ -135,7 +134,7 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
                                       "mag_heading_restores", "mag_calibration_set_aside",
                                       "mag_calibration_taken_back", "state_recoveries", "gps_epochs",
                                       "gps_epochs_used_for_declination", "gps_epochs_forced_out",
-                                      "gps_epochs_rejected"}));
+                                      "gps_values_ignored"}));
   EXPECT_EQ(last.num_counters, static_cast<std::int32_t>(last.counters.size()));
   const std::string summary = test::readFile(dir.file("err"));
   EXPECT_NE(summary.find("\"imu_published\":" + std::to_string(kTrialSamples)), std::string::npos) << summary;
@@ -496,77 +495,6 @@ TEST(DaemonCommandLine, BadConfigurationStopsWithFileLineAndKey) {
   // Starting for real with it fails the same way, before anything is published.
   ChildProcess run({HEADINGD_BIN, "--config", bad}, dir.file("out2"), dir.file("err2"));
   EXPECT_EQ(run.waitFor(10s), 2);
-}
-
-// --check-config runs every check start-up runs: what makes start-up fail makes it fail too,
-// with status 2 (which the unit does not restart on), never 1 after "configuration good".
-TEST(DaemonCommandLine, CheckConfigRunsEveryCheckOfStartUp) {
-  TempDir dir;
-  const auto expectBad = [&](const std::string& toml, const std::string& message) {
-    const std::string config = dir.write("check.toml", toml);
-    for (const bool check_only : {true, false}) {
-      std::vector<std::string> argv = {HEADINGD_BIN, "--config", config};
-      if (check_only) argv.push_back("--check-config");
-      ChildProcess run(argv, dir.file("out"), dir.file("err"));
-      EXPECT_EQ(run.waitFor(10s), 2) << toml << (check_only ? " (--check-config)" : " (start-up)");
-      const std::string err = test::readFile(dir.file("err"));
-      EXPECT_NE(err.find(message), std::string::npos) << err;
-      EXPECT_EQ(test::readFile(dir.file("out")).find("configuration good"), std::string::npos);
-    }
-  };
-  // An unparsable calibration file (it passed --check-config, then start-up exited 1).
-  dir.write("calibration.toml", "[magnetometer\nD = 1\n");
-  expectBad("[daemon]\ncalibration = \"calibration.toml\"\n", dir.file("calibration.toml") + ":1");
-  // A FIFO as the calibration file (it hung, SIGTERM ignored) and /dev/zero as the WMM file
-  // (it was read until the OOM killer acted): refused at once, naming the key.
-  ASSERT_EQ(::mkfifo(dir.file("fifo.toml").c_str(), 0600), 0);
-  expectBad("[daemon]\ncalibration = \"fifo.toml\"\n",
-            "[daemon] calibration: " + dir.file("fifo.toml") + ": is a FIFO (named pipe), not a regular file");
-  expectBad("[daemon]\nwmm = \"/dev/zero\"\n", "[daemon] wmm: /dev/zero: is a character device, not a regular file");
-  // A DBC factor of nan (it passed, and then every sample was rejected).
-  std::string dbc = test::readFile(std::string(HEADINGD_CONFIG_DIR) + "/dbc/headingd_imu.dbc");
-  dbc.replace(dbc.find("(0.0001,0)"), 10, "(nan,0)");
-  dir.write("nan.dbc", dbc);
-  std::string can = test::readFile(std::string(HEADINGD_CONFIG_DIR) + "/can-headingd.toml");
-  can.replace(can.find("dbc = \"dbc/headingd_imu.dbc\""), 28, "dbc = \"nan.dbc\"");
-  dir.write("can.toml", can);
-  expectBad("[candump_log]\nenabled = true\npath = \"" + std::string(HEADINGD_CONFIG_DIR) +
-                "/demo/sim-urban-walk-can.log.gz\"\ncan_config = \"can.toml\"\n",
-            dir.file("nan.dbc") + ":17: expected a finite, non-zero factor");
-}
-
-// A start-up held up by a long file ends at once on SIGTERM. Before, the signals were blocked
-// from the first line of main, so it read on to the end and only then stopped (exit 0).
-TEST(DaemonCommandLine, SigtermDuringStartUpEndsItAtOnce) {
-  TempDir dir;
-  // The demo's candump log ten times over (gzip members in a row, one stream to zlib): 1.8
-  // million frames, read and decoded at start-up for well over a second.
-  const std::string demo_log = test::readFile(std::string(HEADINGD_CONFIG_DIR) + "/demo/sim-urban-walk-can.log.gz");
-  std::string long_log;
-  for (int i = 0; i < 10; ++i) long_log += demo_log;
-  dir.write("long.log.gz", long_log);
-  const std::string config = dir.write(
-      "long.toml", "[candump_log]\nenabled = true\npath = \"long.log.gz\"\ncan_config = \"" +
-                       std::string(HEADINGD_CONFIG_DIR) + "/can-headingd.toml\"\n[lcm]\nurl = \"memq://\"\n");
-  ChildProcess run({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
-  std::this_thread::sleep_for(100ms);  // inside the start-up's reading
-  run.signal(SIGTERM);
-  EXPECT_EQ(run.waitFor(1s), -2) << "not ended by SIGTERM: " << test::readFile(dir.file("err"));
-  EXPECT_EQ(test::readFile(dir.file("err")).find("running:"), std::string::npos);
-}
-
-TEST(DaemonCommandLine, BadOptionsExitWithTheDocumentedStatus) {
-  TempDir dir;
-  // CLI11's own codes (105, 106, ...) are replaced by the configuration error's 2.
-  for (const std::vector<std::string>& argv : {std::vector<std::string>{HEADINGD_BIN, "--no-such-option"},
-                                                std::vector<std::string>{HEADINGD_BIN, "--log-level", "loud"},
-                                                std::vector<std::string>{HEADINGD_BIN, "--config"}}) {
-    ChildProcess run(argv, dir.file("out"), dir.file("err"));
-    EXPECT_EQ(run.waitFor(5s), 2) << argv[1];
-  }
-  ChildProcess help({HEADINGD_BIN, "--help"}, dir.file("out"), dir.file("err"));
-  EXPECT_EQ(help.waitFor(5s), 0);
-  EXPECT_NE(test::readFile(dir.file("out")).find("Exit status: 0"), std::string::npos);
 }
 
 TEST(DaemonCommandLine, CheckConfigAcceptsTheShippedFilesAndVersionPrints) {

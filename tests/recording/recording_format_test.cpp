@@ -50,6 +50,10 @@ TEST(RecordingFormat, NotesAndPlacementsReadBack) {
   EXPECT_EQ(parseCanNote("#dropped (1700000000.000001)")->kind, CanNote::kDropped);
   EXPECT_FALSE(parseCanNote("# something else"));
   EXPECT_FALSE(parseCanNote("#flush (1700000000.1)"));  // candump times have 6 decimals
+  // Seconds beyond a candump time's range (9e9 s) are refused, not overflowed (found by
+  // tests/fuzz/recording_lines_fuzz.cpp).
+  EXPECT_FALSE(parseCanNote("#flush (99999999999.000000)"));
+  EXPECT_FALSE(parseCanNote("#dropped (9223372036854775807.000000)"));
 
   ParsedEstimatorLine placed;
   std::string error;
@@ -59,6 +63,10 @@ TEST(RecordingFormat, NotesAndPlacementsReadBack) {
   EXPECT_EQ(placed.imu_samples_before, 4711u);
   ASSERT_TRUE(parseEstimatorLine(std::string_view(line, formatCalibrationReloaded(9, 3, line)), placed, &error));
   EXPECT_EQ(placed.op, EstimatorOp::kCalibrationReloaded);
+  // A count above 2^63 is written unsigned, as it is read.
+  ASSERT_TRUE(parseEstimatorLine(std::string_view(line, formatGpsPlaced(1, 18446744073709551615u, line)), placed, &error))
+      << std::string(line, formatGpsPlaced(1, 18446744073709551615u, line));
+  EXPECT_EQ(placed.imu_samples_before, 18446744073709551615u);
   EXPECT_FALSE(parseEstimatorLine("12 g", placed, &error));
   EXPECT_FALSE(parseEstimatorLine("12 x 3", placed, &error));
 

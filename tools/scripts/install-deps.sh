@@ -41,6 +41,8 @@ packages=(
   help2man             # the programs' man pages, from their --help
   dpkg-dev             # dpkg-shlibdeps, dpkg-buildflags: the Debian package (build-deb.sh)
   lintian              # checks the Debian package (tests/package)
+  clang                # the libFuzzer targets (tests/fuzz, tools/scripts/fuzz.sh)
+  libclang-rt-14-dev   # libFuzzer and clang's sanitizer runtimes
 )
 
 missing=()

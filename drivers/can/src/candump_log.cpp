@@ -1,5 +1,6 @@
 #include "headingd/can/candump_log.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 
@@ -124,7 +125,11 @@ std::optional<LoggedFrame> parseCandumpLine(std::string_view line, std::string* 
   std::string_view rest = line;
   if (!parseTime(nextField(rest), out.frame.kernel_time_ns, reason)) return std::nullopt;
   out.interface = nextField(rest);
-  if (out.interface.empty()) {
+  // Linux interface names are printable: a control byte there (a NUL, say) is corruption,
+  // and would cut the name short when the line is written again.
+  const bool printable = std::all_of(out.interface.begin(), out.interface.end(),
+                                     [](char c) { return static_cast<unsigned char>(c) > ' ' && c != 0x7F; });
+  if (out.interface.empty() || !printable) {
     fail(reason, "an interface name after the timestamp");
     return std::nullopt;
   }

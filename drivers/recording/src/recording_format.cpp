@@ -13,7 +13,9 @@ std::size_t put(LineBuffer& out, std::size_t at, std::string_view s) {
   return at;
 }
 
-std::size_t putInt(LineBuffer& out, std::size_t at, std::int64_t v) {
+// Signed times and unsigned counts alike (a count above 2^63 must not come out negative).
+template <class Integer>
+std::size_t putInt(LineBuffer& out, std::size_t at, Integer v) {
   const auto [end, ec] = std::to_chars(out + at, out + kMaxLineBytes, v);
   return ec == std::errc() ? static_cast<std::size_t>(end - out) : at;
 }
@@ -50,7 +52,10 @@ bool parseCandumpTime(std::string_view t, std::int64_t& ns) {
   const std::size_t dot = t.find('.');
   if (dot == std::string_view::npos || t.size() - dot - 1 != 6) return false;
   std::int64_t s = 0, us = 0;
-  if (!parseInt(t.substr(0, dot), s) || !parseInt(t.substr(dot + 1), us) || s < 0 || us < 0) return false;
+  // Seconds bounded as in a candump frame's time (candump_log.cpp), so that s * 10^9 fits.
+  if (!parseInt(t.substr(0, dot), s) || !parseInt(t.substr(dot + 1), us) || s < 0 || s > 9'000'000'000 || us < 0) {
+    return false;
+  }
   ns = s * 1'000'000'000 + us * 1000;
   return true;
 }
@@ -111,11 +116,11 @@ std::size_t formatGpsIdle(std::int64_t t_ns, LineBuffer& out) { return timeAndOp
 std::size_t formatGpsEnd(std::int64_t t_ns, LineBuffer& out) { return timeAndOp(t_ns, "e", out); }
 
 std::size_t formatGpsPlaced(std::int64_t gps_t_ns, std::uint64_t imu_samples_before, LineBuffer& out) {
-  return putInt(out, timeAndOp(gps_t_ns, "g ", out), static_cast<std::int64_t>(imu_samples_before));
+  return putInt(out, timeAndOp(gps_t_ns, "g ", out), imu_samples_before);
 }
 
 std::size_t formatCalibrationReloaded(std::int64_t t_ns, std::uint64_t imu_samples_before, LineBuffer& out) {
-  return putInt(out, timeAndOp(t_ns, "c ", out), static_cast<std::int64_t>(imu_samples_before));
+  return putInt(out, timeAndOp(t_ns, "c ", out), imu_samples_before);
 }
 
 std::optional<ParsedCanNote> parseCanNote(std::string_view line) {

@@ -21,9 +21,6 @@ enum DeclinationSource : unsigned { kDeclNone = 0, kDeclWmm = 1, kDeclGps = 2, k
 // "none", "wmm", "wmm+gps", "gps+receiver", …
 const char* declinationSourceName(unsigned sources);
 
-// What is wrong with a GPS observation (nullptr: nothing): the ranges processGps accepts.
-const char* gpsObservationProblem(const GpsObservation& gps);
-
 struct HeadingOutput {
   EstimatorOutput attitude;        // the sensor's attitude, magnetic north
   double heading_mag_rad = 0.0;    // sensor x-axis heading from magnetic north
@@ -41,16 +38,15 @@ class HeadingPipeline {
   HeadingPipeline(const EstimatorParams& params, const WorldMagneticModel* wmm);
 
   SampleVerdict process(const ImuSample& sample);
-  // An epoch with a value no receiver sends (a latitude beyond ±90°, a longitude beyond ±180°,
-  // a magnetic variation beyond ±180°, a non-finite or negative figure) is rejected whole and
-  // counted (gpsEpochsRejected()): it comes from a corrupt source, so none of it is used.
-  // Returns false then.
-  bool processGps(const GpsObservation& gps);
+  // Values it cannot use (non-finite, a latitude beyond ±90°, a negative speed or HDOP, a
+  // variation beyond ±180°) are left out of the epoch and counted: gpsValuesIgnored().
+  // Returns what the first value left out was (for a log line), nullptr when all were used.
+  const char* processGps(const GpsObservation& gps);
 
   const HeadingOutput& output() const { return out_; }
   const Estimator& estimator() const { return estimator_; }
   std::uint64_t gpsEpochsUsedForDeclination() const { return course_minus_heading_.epochs(); }
-  std::uint64_t gpsEpochsRejected() const { return gps_epochs_rejected_; }
+  std::uint64_t gpsValuesIgnored() const { return gps_values_ignored_; }
 
  private:
   bool courseGatesPass(const GpsObservation& gps, double sensor_heading) const;
@@ -76,7 +72,7 @@ class HeadingPipeline {
   double previous_course_rad_ = 0.0;
   double previous_sensor_heading_rad_ = 0.0;
   bool previous_epoch_added_ = false;  // the previous GPS epoch counted for the declination
-  std::uint64_t gps_epochs_rejected_ = 0;
+  std::uint64_t gps_values_ignored_ = 0;
 };
 
 }  // namespace headingd::core

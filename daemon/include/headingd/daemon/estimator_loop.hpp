@@ -144,7 +144,7 @@ class EstimatorLoop {
 
   // Logging limits for per-sample problems.
   RepeatLimiter rejected_log_;
-  RepeatLimiter gps_rejected_log_;  // GPS epochs the pipeline rejected
+  RepeatLimiter gps_rejected_log_;  // GPS values the pipeline left out
   RepeatLimiter drop_log_;
   RepeatLimiter miss_log_;
 
