@@ -124,6 +124,7 @@ void fillCounters(status_t& m, const core::EstimatorCounters& estimator, const L
   add("gps_epochs", loop.gps_epochs);
   add("gps_epochs_used_for_declination", loop.gps_epochs_used_for_declination);
   add("gps_epochs_forced_out", loop.gps_epochs_forced_out);
+  add("log_write_errors", loop.log_write_errors);
   m.num_counters = static_cast<std::int32_t>(i);
 }
 
