@@ -255,6 +255,7 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
   std::size_t shifted = 0, back = 0, other = 0;
   bool seen_shift = false;
   std::int64_t max_sample_step_us = 0;
+  std::size_t sample_time_went_back = 0;
   for (std::size_t i = 0; i < heading.size(); ++i) {
     const double shift_s = (static_cast<double>(heading[i].message.utime) - heading[i].receive_s * 1e6 - base_us) * 1e-6;
     if (std::abs(shift_s - 3600.0) < 0.5) {
@@ -267,8 +268,9 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
     }
     // The estimate's own time axis (the samples', CLOCK_MONOTONIC) runs on without a jump.
     if (i > 0 && heading[i].message.validity == 1 && heading[i - 1].message.validity == 1) {
-      max_sample_step_us =
-          std::max(max_sample_step_us, std::abs(heading[i].message.sample_utime - heading[i - 1].message.sample_utime));
+      const std::int64_t step = heading[i].message.sample_utime - heading[i - 1].message.sample_utime;
+      max_sample_step_us = std::max(max_sample_step_us, step);
+      sample_time_went_back += step < 0;
     }
   }
   std::fprintf(stderr, "HEADING: %zu with utime +1 h, %zu back after the second step, %zu neither; largest "
@@ -276,7 +278,15 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
                shifted, back, other, static_cast<double>(max_sample_step_us) * 1e-6);
   EXPECT_GT(shifted, 100u);
   EXPECT_GT(back, 100u);
-  EXPECT_LT(max_sample_step_us, 200'000);
+  // The sample time never goes back, and it advanced as the monotonic clock did (the largest
+  // step is the emulated CPU's stalls, up to a few tenths of a second; the estimator's gaps
+  // counter below says whether the samples themselves had one).
+  EXPECT_EQ(sample_time_went_back, 0u);
+  const auto first_fresh = std::find_if(heading.begin(), heading.end(), [](const auto& h) { return h.message.validity == 1; });
+  ASSERT_NE(first_fresh, heading.end());
+  const auto& last = heading.back();
+  const double sample_span_s = static_cast<double>(last.message.sample_utime - first_fresh->message.sample_utime) * 1e-6;
+  EXPECT_NEAR(sample_span_s, last.receive_s - first_fresh->receive_s, 1.0);
   // The estimator saw no time going back, no jump and no duplicate; the CAN source saw both steps.
   for (const char* name : {"backwards_time", "clock_jumps", "duplicate_time", "gaps", "imu_rejected"}) {
     EXPECT_EQ(estimatorCounter(after, name), estimatorCounter(before, name)) << name;
