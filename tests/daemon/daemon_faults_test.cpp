@@ -17,8 +17,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "daemon_test_support.hpp"
-#include "lcm_collector.hpp"
+#include "daemon_under_fault.hpp"
 #include "pty_fixture.hpp"
 #include "vcan_test_support.hpp"
 
@@ -28,26 +27,14 @@ namespace {
 using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::counter;
+using test::sourceOfKind;
+using test::statusCounter;
 using test::LcmCollector;
 using test::lcmUrl;
 using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
 constexpr const char* kDemoNmea = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
-
-const headingd::source_status_t* sourceOfKind(const headingd::status_t& m, const std::string& kind) {
-  for (const auto& s : m.sources) {
-    if (s.kind == kind) return &s;
-  }
-  return nullptr;
-}
-
-std::int64_t estimatorCounter(const headingd::status_t& m, const std::string& name) {
-  for (const auto& c : m.counters) {
-    if (c.name == name) return c.value;
-  }
-  return -1;
-}
 
 void printCounters(const char* when, const headingd::source_status_t& s) {
   std::fprintf(stderr, "%s: %s %s (%s):", when, s.name.c_str(), s.state.c_str(), s.last_error.c_str());
@@ -68,7 +55,7 @@ void writeText(headingd::test::PtyPair& pty, const std::string& text) {
 }
 
 // The daemon on the trial and (optionally) a GPS device path, with `extra` TOML.
-class DaemonFaults : public ::testing::Test {
+class DaemonFaults : public test::DaemonUnderFault {
  protected:
   void startDaemon(const std::string& gps_device, const std::string& extra = "") {
     std::string toml = "[daemon]\nimu_timeout_s = 0.5\n[lcm]\nurl = \"" + url_ +
@@ -77,17 +64,8 @@ class DaemonFaults : public ::testing::Test {
       toml += "[gps]\ndevice = \"" + gps_device +
               "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\nreopen_backoff_max_s = 0.2\n";
     }
-    const std::string config = dir_.write("faults.toml", toml + extra);
-    lcm_.emplace(url_);
-    daemon_.emplace(std::vector<std::string>{HEADINGD_BIN, "--config", config}, dir_.file("out"), dir_.file("err"));
-    ASSERT_TRUE(waitUntil([&] { return !lcm_->status().empty() && lcm_->status().back().message.state == "ok"; }, 10s))
-        << test::readFile(dir_.file("err"));
-  }
-  headingd::status_t lastStatus() const { return lcm_->status().back().message; }
-  headingd::status_t nextStatus() {
-    const std::size_t seen = lcm_->status().size();
-    EXPECT_TRUE(waitUntil([&] { return lcm_->status().size() > seen; }, 5s));
-    return lastStatus();
+    launch(toml + extra, url_);
+    ASSERT_TRUE(waitUntil([&] { return hasStatus() && lastStatus().state == "ok"; }, 10s)) << daemonLog();
   }
   std::optional<headingd::source_status_t> gpsSource() const {
     const auto s = lcm_->status();
@@ -95,17 +73,8 @@ class DaemonFaults : public ::testing::Test {
     if (gps == nullptr) return std::nullopt;
     return *gps;
   }
-  void expectRunningThenStop() {
-    EXPECT_EQ(daemon_->waitFor(0ms), -1) << "the daemon exited: " << test::readFile(dir_.file("err"));
-    daemon_->signal(SIGTERM);
-    EXPECT_EQ(daemon_->waitFor(5s), 0) << test::readFile(dir_.file("err"));
-    lcm_->stop();
-  }
 
-  test::TempDir dir_;
   std::string url_ = lcmUrl(20);
-  std::optional<LcmCollector> lcm_;
-  std::optional<ChildProcess> daemon_;
 };
 
 TEST_F(DaemonFaults, GpsPtyClosedAndAnotherBehindTheSamePathIsReconnectedAndCounted) {
@@ -125,7 +94,7 @@ TEST_F(DaemonFaults, GpsPtyClosedAndAnotherBehindTheSamePathIsReconnectedAndCoun
   // Unplugged: the pty goes away.
   pty.reset();
   ASSERT_TRUE(waitUntil([&] { return gpsSource() && gpsSource()->state != "running"; }, 5s))
-      << test::readFile(dir_.file("err"));
+      << daemonLog();
   const auto unplugged = *gpsSource();
   printCounters("unplugged", unplugged);
 
@@ -133,7 +102,7 @@ TEST_F(DaemonFaults, GpsPtyClosedAndAnotherBehindTheSamePathIsReconnectedAndCoun
   pty.emplace();
   headingd::test::pointSymlink(link, pty->slavePath());
   ASSERT_TRUE(waitUntil([&] { return gpsSource() && gpsSource()->state == "running"; }, 5s))
-      << test::readFile(dir_.file("err"));
+      << daemonLog();
   for (int i = 6; i < 12; ++i) {
     writeText(*pty, epochs[static_cast<std::size_t>(i)]);
     std::this_thread::sleep_for(200ms);
@@ -152,7 +121,7 @@ TEST_F(DaemonFaults, GpsPtyClosedAndAnotherBehindTheSamePathIsReconnectedAndCoun
   EXPECT_EQ(counter(*gps, "epochs_pushed"), 12);
   EXPECT_EQ(gps->state, "running");
   EXPECT_EQ(after.state, "ok") << after.reason;
-  EXPECT_EQ(estimatorCounter(after, "gps_epochs"), 12);
+  EXPECT_EQ(statusCounter(after, "gps_epochs"), 12);
   expectRunningThenStop();
 }
 
@@ -228,7 +197,7 @@ TEST_F(DaemonFaults, FullDiskUnderTheLogFileAndTheRecorderIsCountedAndSurvived) 
   });
   std::this_thread::sleep_for(1500ms);
   const headingd::status_t before = nextStatus();
-  ASSERT_EQ(estimatorCounter(before, "log_write_errors"), 0);
+  ASSERT_EQ(statusCounter(before, "log_write_errors"), 0);
 
   // The disk fills up; each SIGHUP makes the daemon log two lines (and reopen the log file):
   // 40 of them are more than the room left in the log file's last page of the tmpfs.
@@ -248,22 +217,22 @@ TEST_F(DaemonFaults, FullDiskUnderTheLogFileAndTheRecorderIsCountedAndSurvived) 
   const headingd::status_t freed = nextStatus();
   stop_gps.store(true);
   gps.join();
-  const std::string stderr_text = test::readFile(dir_.file("err"));
+  const std::string stderr_text = daemonLog();
   const std::string log_after = test::readFile(log);
 
-  const auto recorderCounter = [](const headingd::status_t& m, const char* name) { return estimatorCounter(m, name); };
+  const auto recorderCounter = [](const headingd::status_t& m, const char* name) { return statusCounter(m, name); };
   std::fprintf(stderr,
                "full disk: log_write_errors %lld -> %lld -> %lld; recorder_write_errors %lld, "
                "recorder_lines_dropped_io %lld, recorder_lines_written %lld -> %lld -> %lld\n",
-               static_cast<long long>(estimatorCounter(before, "log_write_errors")),
-               static_cast<long long>(estimatorCounter(full, "log_write_errors")),
-               static_cast<long long>(estimatorCounter(freed, "log_write_errors")),
+               static_cast<long long>(statusCounter(before, "log_write_errors")),
+               static_cast<long long>(statusCounter(full, "log_write_errors")),
+               static_cast<long long>(statusCounter(freed, "log_write_errors")),
                static_cast<long long>(recorderCounter(freed, "recorder_write_errors")),
                static_cast<long long>(recorderCounter(freed, "recorder_lines_dropped_io")),
                static_cast<long long>(recorderCounter(before, "recorder_lines_written")),
                static_cast<long long>(recorderCounter(full, "recorder_lines_written")),
                static_cast<long long>(recorderCounter(freed, "recorder_lines_written")));
-  EXPECT_GT(estimatorCounter(full, "log_write_errors"), 0);
+  EXPECT_GT(statusCounter(full, "log_write_errors"), 0);
   EXPECT_GT(recorderCounter(full, "recorder_write_errors"), 0);
   EXPECT_GT(recorderCounter(full, "recorder_lines_dropped_io"), 0);
   // The failure is said once on stderr, which keeps every line.

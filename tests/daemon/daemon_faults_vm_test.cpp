@@ -19,8 +19,7 @@
 #include <optional>
 
 #include "can_frame_sender.hpp"
-#include "daemon_test_support.hpp"
-#include "lcm_collector.hpp"
+#include "daemon_under_fault.hpp"
 #include "vcan_test_support.hpp"
 
 namespace headingd::daemon {
@@ -29,25 +28,14 @@ namespace {
 using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::counter;
+using test::statusCounter;
 using test::LcmCollector;
 using test::waitUntil;
 
 constexpr int kRows = 2857;  // the first 10 s of BROAD trial 05 (286 Hz, three frames a sample)
 const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0";  // alone in the VM's network
 
-const headingd::source_status_t* canSource(const headingd::status_t& m) {
-  for (const auto& s : m.sources) {
-    if (s.kind == "can") return &s;
-  }
-  return nullptr;
-}
-
-std::int64_t estimatorCounter(const headingd::status_t& m, const std::string& name) {
-  for (const auto& c : m.counters) {
-    if (c.name == name) return c.value;
-  }
-  return -1;
-}
+const headingd::source_status_t* canSource(const headingd::status_t& m) { return test::sourceOfKind(m, "can"); }
 
 void printCanCounters(const char* when, const headingd::status_t& m) {
   const auto* can = canSource(m);
@@ -64,7 +52,7 @@ void printCanCounters(const char* when, const headingd::status_t& m) {
 
 int ip(const std::string& args) { return std::system(("ip " + args).c_str()); }
 
-class DaemonFaultsVm : public ::testing::Test {
+class DaemonFaultsVm : public test::DaemonUnderFault {
  protected:
   void SetUp() override {
     if (if_nametoindex("vcan0") == 0) GTEST_SKIP() << "no vcan0: run through tools/scripts/vm-run.sh";
@@ -78,37 +66,18 @@ class DaemonFaultsVm : public ::testing::Test {
 
   // Starts the daemon on vcan0 (with `extra` TOML) and waits until its CAN source runs.
   void startDaemon(const std::string& extra = "") {
-    const std::string config = dir_.write(
-        "faults.toml", "[daemon]\nimu_timeout_s = 0.5\n[lcm]\nurl = \"" + kUrl + "\"\n" + extra + "\n" + can_table_);
-    lcm_.emplace(kUrl);
-    daemon_.emplace(std::vector<std::string>{HEADINGD_BIN, "--config", config}, dir_.file("out"), dir_.file("err"));
+    launch("[daemon]\nimu_timeout_s = 0.5\n[lcm]\nurl = \"" + kUrl + "\"\n" + extra + "\n" + can_table_, kUrl);
     ASSERT_TRUE(waitUntil(
         [&] {
-          const auto s = lcm_->status();
-          return !s.empty() && canSource(s.back().message) != nullptr && canSource(s.back().message)->state == "running";
+          if (!hasStatus()) return false;
+          const headingd::status_t s = lastStatus();
+          return canSource(s) != nullptr && canSource(s)->state == "running";
         },
         20s))
-        << test::readFile(dir_.file("err"));
-  }
-  headingd::status_t lastStatus() const { return lcm_->status().back().message; }
-  // Waits for the next STATUS and returns it.
-  headingd::status_t nextStatus() {
-    const std::size_t seen = lcm_->status().size();
-    EXPECT_TRUE(waitUntil([&] { return lcm_->status().size() > seen; }, 5s));
-    return lastStatus();
-  }
-  // The daemon must still run; then SIGTERM, exit 0.
-  void expectRunningThenStop() {
-    EXPECT_EQ(daemon_->waitFor(0ms), -1) << "the daemon exited: " << test::readFile(dir_.file("err"));
-    daemon_->signal(SIGTERM);
-    EXPECT_EQ(daemon_->waitFor(5s), 0) << test::readFile(dir_.file("err"));
-    lcm_->stop();
+        << daemonLog();
   }
 
-  test::TempDir dir_;
   std::string can_table_;
-  std::optional<LcmCollector> lcm_;
-  std::optional<ChildProcess> daemon_;
 };
 
 TEST_F(DaemonFaultsVm, InterfaceDownAndUpIsWaitedOutCountedAndReceivingResumes) {
@@ -142,7 +111,7 @@ TEST_F(DaemonFaultsVm, InterfaceDownAndUpIsWaitedOutCountedAndReceivingResumes) 
   EXPECT_EQ(canSource(down)->state, "waiting");
   EXPECT_NE(canSource(down)->last_error.find("vcan0"), std::string::npos) << canSource(down)->last_error;
   EXPECT_EQ(down.state, "degraded") << down.reason;
-  ASSERT_TRUE(resumed) << test::readFile(dir_.file("err"));
+  ASSERT_TRUE(resumed) << daemonLog();
   const auto* can = canSource(after);
   EXPECT_EQ(counter(*can, "times_lost"), 1);
   EXPECT_EQ(counter(*can, "times_up"), 2);
@@ -193,7 +162,7 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
   EXPECT_EQ(ring.high_water, kRingCapacity);
   // Every sample through the ring went to the estimator, used or rejected (and counted), but
   // those still in the ring when STATUS was filled.
-  const std::int64_t estimated = estimatorCounter(after, "samples_accepted") + estimatorCounter(after, "imu_rejected");
+  const std::int64_t estimated = statusCounter(after, "samples_accepted") + statusCounter(after, "imu_rejected");
   EXPECT_LE(estimated, ring.pushed);
   EXPECT_GE(estimated, ring.pushed - kRingCapacity);
 
@@ -289,7 +258,7 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
   EXPECT_NEAR(sample_span_s, last.receive_s - first_fresh->receive_s, 1.0);
   // The estimator saw no time going back, no jump and no duplicate; the CAN source saw both steps.
   for (const char* name : {"backwards_time", "clock_jumps", "duplicate_time", "gaps", "imu_rejected"}) {
-    EXPECT_EQ(estimatorCounter(after, name), estimatorCounter(before, name)) << name;
+    EXPECT_EQ(statusCounter(after, name), statusCounter(before, name)) << name;
   }
   const auto* can = canSource(after);
   EXPECT_EQ(counter(*can, "wall_clock_steps"), 2);
