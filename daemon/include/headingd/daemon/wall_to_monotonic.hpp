@@ -2,8 +2,8 @@
 // Puts a CLOCK_REALTIME timestamp (a CAN frame's kernel receive time) on CLOCK_MONOTONIC,
 // across steps of the wall clock (date -s, an NTP step, a GPS-disciplined clock setting
 // itself): the kernel stamped the frame before the daemon reads the clocks, so a step in
-// between would move the frame by the step -- an hour into the future, where every later
-// sample would look like a step back in time to the estimator's gate, or an hour into the past.
+// between would move the frame by the whole step, an hour ahead of or behind its neighbours,
+// which the estimator's sample gate then rejects (backwards_time) or takes as a clock jump.
 //
 // It keeps the offset realtime - monotonic of the regime before the last step beside the
 // current one, and of the two mappings takes the latest that is not after now: a frame
