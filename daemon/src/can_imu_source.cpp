@@ -60,11 +60,14 @@ void CanImuSource::pushSamples(const can::AssembledSamples& samples) {
 }
 
 void CanImuSource::onFrame(const can::CanFrame& received) {
-  // The offset is read now, microseconds after the frame, so a wall-clock step moves at most
-  // the frames received across it.
+  // The offset is read now, microseconds after the frame; a wall-clock step in between is
+  // undone by wall_to_monotonic.hpp.
   can::CanFrame frame = received;
-  const std::int64_t t = received.kernel_time_ns != 0 ? received.kernel_time_ns - (realtimeNs() - monotonicNs())
-                                                      : monotonicNs();  // no kernel timestamp: the best we know
+  const ClockReading now = readClocks(monotonicNs, realtimeNs);
+  const std::int64_t t = received.kernel_time_ns != 0 ? wall_to_mono_.map(received.kernel_time_ns, now)
+                                                      : now.monotonic_ns;  // no kernel timestamp: the best we know
+  clock_steps_.store(wall_to_mono_.steps(), std::memory_order_relaxed);
+  future_stamps_.store(wall_to_mono_.clamped(), std::memory_order_relaxed);
   frame.kernel_time_ns = wholeMicroseconds(t);
   if (recorder_ != nullptr) recorder_->frame(frame);
   pushSamples(assembler_->push(frame));
@@ -101,6 +104,8 @@ void CanImuSource::report(SourceReport& out) const {
   out.set(i++, "error_passive", r.bus.error_passive);
   out.set(i++, "controller_rx_overflow", r.bus.controller_rx_overflow);
   out.set(i++, "protocol_violations", r.bus.protocol_violations);
+  out.set(i++, "wall_clock_steps", clock_steps_.load(std::memory_order_relaxed));
+  out.set(i++, "future_timestamps", future_stamps_.load(std::memory_order_relaxed));
   withSnapshot([&](const can::AssemblerCounters& assembler) { reportAssemblerCounters(out, &i, assembler); });
 }
 

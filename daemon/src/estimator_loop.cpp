@@ -11,6 +11,7 @@
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/daemon/clocks.hpp"
 #include "headingd/files/numeric_csv.hpp"
+#include "headingd/daemon/logging.hpp"
 #include "headingd/daemon/realtime.hpp"
 
 namespace headingd::daemon {
@@ -342,6 +343,7 @@ LoopCounters EstimatorLoop::loopCounters() const {
   c.gps_epochs_used_for_declination = pipeline_.gpsEpochsUsedForDeclination();
   c.gps_epochs_forced_out = gps_epochs_forced_;
   c.gps_values_ignored = pipeline_.gpsValuesIgnored();
+  c.log_write_errors = logWriteErrors();
   return c;
 }
 

@@ -1,5 +1,6 @@
 #include "headingd/daemon/logging.hpp"
 
+#include <atomic>
 #include <mutex>
 #include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/basic_file_sink.h>
@@ -43,6 +44,21 @@ std::mutex g_mutex;
 std::shared_ptr<spdlog::sinks::dist_sink_mt> g_dist;
 std::shared_ptr<spdlog::sinks::sink> g_stderr;
 std::string g_file;
+std::atomic<std::uint64_t> g_write_errors{0};
+std::atomic<bool> g_write_error_said{false};  // since the file was last (re)opened
+
+// spdlog calls this when a sink throws: the log file's write or flush failed (a full disk,
+// an I/O error). stderr has the line already (it is the first sink), so nothing is lost
+// there; the failure is counted for STATUS and said on stderr once per opening of the file,
+// instead of spdlog's default of one message a second on the wall clock.
+void onSinkError(const std::string& what) {
+  g_write_errors.fetch_add(1, std::memory_order_relaxed);
+  if (g_write_error_said.exchange(true) || g_stderr == nullptr) return;
+  const std::string text = "log file: " + what +
+                           "; lines go to stderr only until it can be written again (counted on STATUS as "
+                           "log_write_errors; said once until SIGHUP reopens the file)";
+  g_stderr->log(spdlog::details::log_msg("headingd", spdlog::level::err, text));
+}
 
 void installSinks() {
   std::vector<std::shared_ptr<spdlog::sinks::sink>> sinks{g_stderr};
@@ -64,15 +80,29 @@ void setUpLogging(const LogConfig& config, const std::string& level_override) {
   g_file = config.file;
   installSinks();
   auto logger = std::make_shared<spdlog::logger>("headingd", g_dist);
+  logger->set_error_handler(onSinkError);
   logger->set_level(spdlog::level::from_str(level_override.empty() ? config.level : level_override));
   logger->flush_on(spdlog::level::trace);  // a daemon's log is read live; lines are few
   spdlog::set_default_logger(logger);
 }
 
 void reopenLogFile() {
-  std::lock_guard lock(g_mutex);
-  if (g_dist == nullptr || g_file.empty()) return;
-  installSinks();
+  std::string failure;
+  {
+    std::lock_guard lock(g_mutex);
+    if (g_dist == nullptr || g_file.empty()) return;
+    g_write_error_said.store(false);
+    try {
+      installSinks();
+    } catch (const std::exception& e) {  // e.g. its folder is gone: go on with stderr alone
+      g_dist->set_sinks({g_stderr});
+      g_write_errors.fetch_add(1, std::memory_order_relaxed);
+      failure = e.what();
+    }
+  }
+  if (!failure.empty()) spdlog::error("log file not reopened, logging to stderr only: {}", failure);
 }
+
+std::uint64_t logWriteErrors() { return g_write_errors.load(std::memory_order_relaxed); }
 
 }  // namespace headingd::daemon

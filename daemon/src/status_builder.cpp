@@ -125,6 +125,7 @@ void fillCounters(status_t& m, const core::EstimatorCounters& estimator, const L
   add("gps_epochs_used_for_declination", loop.gps_epochs_used_for_declination);
   add("gps_epochs_forced_out", loop.gps_epochs_forced_out);
   add("gps_values_ignored", loop.gps_values_ignored);
+  add("log_write_errors", loop.log_write_errors);
   m.num_counters = static_cast<std::int32_t>(i);
 }
 

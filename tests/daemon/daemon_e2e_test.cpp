@@ -134,7 +134,7 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
                                       "mag_heading_restores", "mag_calibration_set_aside",
                                       "mag_calibration_taken_back", "state_recoveries", "gps_epochs",
                                       "gps_epochs_used_for_declination", "gps_epochs_forced_out",
-                                      "gps_values_ignored"}));
+                                      "gps_values_ignored", "log_write_errors"}));
   EXPECT_EQ(last.num_counters, static_cast<std::int32_t>(last.counters.size()));
   const std::string summary = test::readFile(dir.file("err"));
   EXPECT_NE(summary.find("\"imu_published\":" + std::to_string(kTrialSamples)), std::string::npos) << summary;

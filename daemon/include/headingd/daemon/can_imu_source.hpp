@@ -6,6 +6,7 @@
 // frame's) is then both its time for the estimator and its arrival time, so the age at
 // publish is measured from the kernel timestamp; and the black box's candump lines, which
 // have microseconds, hold exactly the times the assembler used.
+#include <atomic>
 #include <memory>
 
 #include "headingd/can/can_config.hpp"
@@ -16,6 +17,7 @@
 #include "headingd/daemon/asio_source.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/source_registry.hpp"
+#include "headingd/daemon/wall_to_monotonic.hpp"
 #include "headingd/recording/stream_recorders.hpp"
 
 namespace headingd::daemon {
@@ -53,6 +55,8 @@ class CanImuSource final : public AsioSource<can::AssemblerCounters> {
   std::int64_t flush_age_ns_ = 0;  // can/epoch_flush.hpp
   std::unique_ptr<can::SocketCanReceiver> receiver_;
   std::unique_ptr<recording::CanStreamRecorder> recorder_;  // null: not recording
+  WallToMonotonic wall_to_mono_;  // io thread; its counts for STATUS below
+  std::atomic<std::uint64_t> clock_steps_{0}, future_stamps_{0};
 };
 
 }  // namespace headingd::daemon

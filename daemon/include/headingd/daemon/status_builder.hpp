@@ -65,6 +65,7 @@ struct LoopCounters {
   std::uint64_t gps_epochs_used_for_declination = 0;
   std::uint64_t gps_epochs_forced_out = 0;      // went in early: too many held (never expected)
   std::uint64_t gps_values_ignored = 0;         // unusable GPS values left out (HeadingPipeline::processGps)
+  std::uint64_t log_write_errors = 0;           // the log file could not be written (logging.hpp)
 };
 
 // "ok", "degraded" (see `reason`) or "starting" (no estimate yet); `reason` is empty unless
