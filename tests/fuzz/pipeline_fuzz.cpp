@@ -15,6 +15,7 @@
 #include "fuzz_check.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
+#include "headingd/files/input_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
 using namespace headingd;
@@ -23,7 +24,7 @@ namespace {
 
 const core::WorldMagneticModel& worldMagneticModel() {
   static const auto model = std::make_unique<core::WorldMagneticModel>(
-      core::parseWmmCoefficients(files::readMaybeGzipFile(HEADINGD_FUZZ_WMM_COF), HEADINGD_FUZZ_WMM_COF));
+      core::parseWmmCoefficients(files::readMaybeGzipFile(HEADINGD_FUZZ_WMM_COF, files::kWmmFileLimit), HEADINGD_FUZZ_WMM_COF));
   return *model;
 }
 

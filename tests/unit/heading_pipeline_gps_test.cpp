@@ -10,6 +10,7 @@
 
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
+#include "headingd/files/input_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::core {
@@ -18,7 +19,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 WorldMagneticModel wmm2025() {
-  return WorldMagneticModel(parseWmmCoefficients(files::readMaybeGzipFile(HEADINGD_WMM_COF), HEADINGD_WMM_COF));
+  return WorldMagneticModel(parseWmmCoefficients(files::readMaybeGzipFile(HEADINGD_WMM_COF, files::kWmmFileLimit), HEADINGD_WMM_COF));
 }
 
 // A second of a level, still IMU at 100 Hz in a field pointing north and down.
