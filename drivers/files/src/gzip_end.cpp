@@ -10,8 +10,14 @@ std::string gzipEndMissingMessage(const std::string& path, std::uint64_t bytes_r
 std::string gzipReadErrorMessage(gzFile file, const std::string& path) {
   int code = Z_OK;
   std::string reason = gzerror(file, &code);
-  // zlib puts the path in front of its message; ours is already there.
-  if (reason.starts_with(path + ": ")) reason.erase(0, path.size() + 2);
+  // zlib puts the path it was given in front of its message: ours (gzopen), or "<fd:N>" for a
+  // file opened first and handed over (gzdopen). Ours is already there.
+  if (reason.starts_with(path + ": ")) {
+    reason.erase(0, path.size() + 2);
+  } else if (reason.starts_with("<fd:")) {
+    const std::size_t end = reason.find(">: ");
+    if (end != std::string::npos) reason.erase(0, end + 3);
+  }
   if (code == Z_DATA_ERROR) return path + ": corrupt gzip file: " + reason;
   return path + ": read error: " + reason;
 }
