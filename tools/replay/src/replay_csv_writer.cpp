@@ -1,6 +1,5 @@
 #include "headingd/replay/replay_csv_writer.hpp"
 
-#include <charconv>
 #include <cstring>
 #include <numbers>
 #include <stdexcept>
@@ -27,14 +26,7 @@ char* putSecondsNs(char* p, std::int64_t t_ns) {
   const bool negative = t_ns < 0;
   const std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(t_ns) : static_cast<std::uint64_t>(t_ns);
   if (negative) *p++ = '-';
-  p = std::to_chars(p, p + 24, magnitude / 1'000'000'000u).ptr;
-  *p++ = '.';
-  std::uint64_t fraction = magnitude % 1'000'000'000u;
-  for (int i = 8; i >= 0; --i) {
-    p[i] = static_cast<char>('0' + fraction % 10);
-    fraction /= 10;
-  }
-  return p + 9;
+  return files::writeScaledDecimal(p, magnitude, 9);
 }
 
 // printf("%.Nf"); the room is kMaxRowBytes.
