@@ -74,10 +74,10 @@ NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config
       io(), player, [this](const nmea::Fix& fix, std::int64_t receive_ns) { onFix(fix, receive_ns); },
       nmea::LineHandler{}, [this] { onFinished(); });
 
-  // The first epoch's time and the first date, from the parser's view of the whole log.
+  // The first epoch's time and the log's first day, from the parser's view of the whole log.
+  first_day_ns_ = NmeaLogTime::logDayStart(updates);
   std::optional<std::int64_t> previous_tod;
   for (const nmea::FixUpdate& u : updates) {
-    if (u.fix.utc_ns && u.fix.time_of_day_ns && first_day_ns_ == 0) first_day_ns_ = *u.fix.utc_ns - *u.fix.time_of_day_ns;
     if (u.fix.time_of_day_ns && u.fix.time_of_day_ns != previous_tod) {
       ++epochs_in_log_;
       previous_tod = u.fix.time_of_day_ns;
@@ -101,6 +101,7 @@ void NmeaLogSource::onFix(const nmea::Fix& fix, std::int64_t receive_ns) {
     untimed_.fetch_add(1, std::memory_order_relaxed);
     t = clock_->logNsAt(receive_ns);
   }
+  dates_not_believed_.store(log_time_->datesNotBelieved(), std::memory_order_relaxed);
   GpsRingEntry e;
   e.observation = nmea::gpsObservationFromFix(fix, *t);
   e.arrival_mono_ns = receive_ns;
@@ -134,6 +135,7 @@ void NmeaLogSource::report(SourceReport& out) const {
     out.set(i++, "epochs_pushed", pushed());
     out.set(i++, "ring_full_drops", ringFullDrops());
     out.set(i++, "epochs_without_time", untimed_.load(std::memory_order_relaxed));
+    out.set(i++, "dates_not_believed", dates_not_believed_.load(std::memory_order_relaxed));
     out.set(i++, "late_sentences", c.epochs.late_sentences);
     out.set(i++, "groups_played", c.groups_played);
     out.set(i++, "backward_steps", c.backward_steps);

@@ -1,9 +1,10 @@
 // The daemon's log sources on damaged copies of the demo logs (config/demo): a candump log
-// whose first frame is stamped (0.000000), one with a frame a year ahead, and gzip logs cut
-// short. Each is played to its end (the daemon exits by itself with at_end = "exit"), and
-// STATUS and the log say what was skipped or missing.
+// whose first frame is stamped (0.000000), one with a frame a year ahead, gzip logs cut short,
+// and an NMEA log whose first date is 1980. Each is played to its end (the daemon exits by
+// itself with at_end = "exit"), and STATUS and the log say what was skipped or missing.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <map>
 #include <sstream>
 
@@ -141,6 +142,32 @@ TEST(DaemonBadLogs, NmeaGzipLogIsPlayedAndOneCutShortIsSaidSo) {
   EXPECT_GT(part.counter("epochs"), 10);
   EXPECT_LT(part.counter("epochs"), 601);
   EXPECT_NE(part.err.find(cut + ": the gzip log is cut short"), std::string::npos) << part.err;
+}
+
+// "$BODY*HH" with the checksum of BODY.
+std::string nmeaSentence(const std::string& body) {
+  unsigned checksum = 0;
+  for (const char c : body) checksum ^= static_cast<unsigned char>(c);
+  char hex[3];
+  std::snprintf(hex, sizeof hex, "%02X", checksum);
+  return "$" + body + "*" + hex;
+}
+
+// A receiver prints a default date (1980-01-06) before its first fix: that date must not set
+// the log's start (the next epoch would then be due 46 years later: the player stalled).
+TEST(DaemonBadLogs, NmeaFirstDate1980IsNotBelievedAndTheLogPlays) {
+  TempDir dir;
+  std::string log = test::readFile(kDemoNmea);
+  const std::string first_rmc = "$GPRMC,120000.00,A,5919.80051,N,01804.19625,E,0.000,,010626,7.7,E,A*17";
+  const auto at = log.find(first_rmc);
+  ASSERT_NE(at, std::string::npos);
+  log.replace(at, first_rmc.size(), nmeaSentence("GPRMC,120000.00,A,5919.80051,N,01804.19625,E,0.000,,060180,7.7,E,A"));
+  const std::string path = dir.write("gps.nmea", log);
+  const DaemonRun run = runDaemon(dir, 34, "[nmea_log]\nenabled = true\npath = \"" + path + "\"\n", 1000.0);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.state, "finished") << run.err;
+  EXPECT_EQ(run.counter("epochs"), 601);
+  EXPECT_GE(run.counter("dates_not_believed"), 1);  // the fix updates that carried the 1980 date
 }
 
 }  // namespace

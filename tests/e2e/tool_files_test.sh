@@ -6,6 +6,7 @@
 # - UNIX times come out of headingd-replay with all their digits, not as 1.7e+09;
 # - headingd-eval with no row to score prints valid JSON (null and a reason), not nan;
 # - a directory, a FIFO or /dev/zero as an input is refused at once with a message naming it;
+# - a GPS value that cannot be used is counted in the replay's JSON;
 # - a bad option exits 2 (not CLI11's 105/106).
 set -euo pipefail
 replay=$1 eval_tool=$2 nmea_dump=$3 wmm=$4 trial=$5
@@ -69,7 +70,24 @@ expect_status 1 "/dev/zero: is a character device" "$wmm" --cof /dev/zero --lat 
 expect_status 1 "fifo.nmea: is a FIFO" "$replay" --imu-csv "$work/fifo.nmea" --out "$work/o.csv"
 expect_status 1 "is a directory" "$eval_tool" --estimates "$work" --reference "$work/still.csv"
 
-# 6. Bad options: 2, as every --help footer says.
+# 6. A GPS value that cannot be used (an RMC magnetic variation of 200 degrees) is left out and
+#    counted in the replay's JSON: by the NMEA parser (nmea_invalid_fields); what passes the
+#    parser but not the estimator's own checks is counted as gps_values_ignored, as on STATUS.
+python3 - "$work/bad_variation.nmea" <<'PYTHON'
+import functools, operator, sys
+with open(sys.argv[1], "w") as out:
+    for i, variation in enumerate(["2.0", "200.0", "2.0"]):
+        body = f"GPRMC,1200{i:02d}.00,A,5230.000,N,01320.000,E,1.0,90.0,010626,{variation},E,A"
+        checksum = functools.reduce(operator.xor, body.encode(), 0)
+        out.write(f"${body}*{checksum:02X}\r\n")
+PYTHON
+"$replay" --imu-csv "$work/in.csv" --nmea "$work/bad_variation.nmea" --out "$work/gps.csv" 2>"$work/err" ||
+  fail "replay with NMEA failed: $(cat "$work/err")"
+grep -q '"gps_epochs":3,.*"gps_values_ignored":0,.*"nmea_invalid_fields":1,' "$work/err" ||
+  fail "the bad variation is not counted: $(cat "$work/err")"
+echo "ok: $(grep -o '"gps_epochs[^n]*' "$work/err")"
+
+# 7. Bad options: 2, as every --help footer says.
 for tool in "$replay" "$eval_tool" "$nmea_dump" "$wmm"; do
   expect_status 2 "" "$tool" --no-such-option
   "$tool" --help | grep -q "Exit codes: 0" || fail "$tool --help lists no exit codes"

@@ -300,5 +300,23 @@ TEST(LcmExport, MissingLogAndBadArgumentsHaveTheirExitStatus) {
   EXPECT_EQ(r.status, 2);
 }
 
+// A log named like one of its tables, exported into its own folder: the table's rename would
+// have replaced the log. Refused (also through a symbolic link), the log left as it was.
+TEST(LcmExport, ATableThatWouldBeTheLogItselfIsRefused) {
+  TempDir work;
+  const auto events = everyTypeOnItsChannel();
+  writeLcmLog(work.path() / "HEADING.csv", events);
+  const std::string before = readText(work.path() / "HEADING.csv");
+  RunResult r = runExporter(work.path(), (work.path() / "HEADING.csv").string() + " --out-dir " + work.path().string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("would be the log"), std::string::npos) << r.err;
+  std::filesystem::create_directory(work.path() / "linked");
+  std::filesystem::create_symlink(work.path() / "HEADING.csv", work.path() / "linked" / "HEADING.csv");
+  r = runExporter(work.path(), (work.path() / "HEADING.csv").string() + " --out-dir " + (work.path() / "linked").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(readText(work.path() / "HEADING.csv"), before);
+  EXPECT_FALSE(std::filesystem::exists(work.path() / "GPS.csv"));
+}
+
 }  // namespace
 }  // namespace headingd::lcm_export::test

@@ -51,7 +51,8 @@ Exit status:
      the end of the file, or a message of headingd's types that does not decode; stderr
      names the file and the byte offset of the bad event; every event before it is
      exported and the tables are in place
-  2  bad arguments, or a --channel that the log does not have (the others are exported)
+  2  bad arguments, a --channel that the log does not have (the others are exported), or
+     a table that would be the log itself (nothing is written)
   3  the log cannot be read or a table cannot be written (tables not in place are removed)
 
 Example (record, export, open in pandas):
@@ -81,6 +82,9 @@ int main(int argc, char** argv) {
   ExportResult result;
   try {
     result = exportLcmLog(options);
+  } catch (const TableOverLogError& e) {
+    std::fprintf(stderr, "headingd-lcm-export: %s\n", e.what());
+    return kExitUsage;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-lcm-export: %s\n", e.what());
     return kExitIo;

@@ -127,13 +127,24 @@ ExportResult exportLcmLog(const ExportOptions& options) {
   // --- Pass 2: every good event into its table ---
   std::filesystem::create_directories(options.out_dir);
   std::set<std::string> file_names;
+  std::vector<std::filesystem::path> table_paths;
   for (auto& table : tables.all()) {
     const std::string type(table->type->name);
     std::string name = tableFileName(table->channel, type, tables.typesOn(table->channel) > 1);
     // Two channels that differ only in replaced bytes ("a/b", "a_b") get "-2", "-3", ...
     const std::string stem = name.substr(0, name.size() - 4);
     for (int n = 2; !file_names.insert(name).second; ++n) name = stem + "-" + std::to_string(n) + ".csv";
-    table->csv = std::make_unique<CsvTable>(options.out_dir / name);
+    table_paths.push_back(options.out_dir / name);
+    // Renaming a table into place over the log would destroy it (also through a link).
+    std::error_code not_there;
+    if (std::filesystem::equivalent(options.log_path, table_paths.back(), not_there)) {
+      throw TableOverLogError("the table " + table_paths.back().string() + " would be the log " +
+                              options.log_path.string() + " itself: refusing to overwrite the log (choose another --out-dir)");
+    }
+  }
+  std::size_t table_index = 0;
+  for (auto& table : tables.all()) {
+    table->csv = std::make_unique<CsvTable>(table_paths[table_index++]);
     std::vector<std::string> header{"log_utime", "event"};
     header.insert(header.end(), table->layout.columns().begin(), table->layout.columns().end());
     table->csv->writeRow(header);

@@ -63,16 +63,17 @@ class EstimateLog {
   headingd::attitude_t attitude_{};
 };
 
-void printRecordingCounters(const recording::RecordingReader& reader) {
+void printRecordingCounters(const recording::RecordingReader& reader, const core::HeadingPipeline& pipeline) {
   const recording::RecordingCounters& c = reader.counters();
   std::fprintf(stderr,
                "{\"recording_complete\":%s,\"can_frames\":%llu,\"can_flushes\":%llu,\"imu_samples\":%llu,"
-               "\"imu_dropped_live\":%llu,\"gps_epochs\":%llu,\"gps_epochs_not_placed\":%llu,"
+               "\"imu_dropped_live\":%llu,\"gps_epochs\":%llu,\"gps_epochs_not_placed\":%llu,\"gps_values_ignored\":%llu,"
                "\"calibration_reloads\":%llu,\"lost_lines\":%llu,\"bad_lines\":%llu,\"start_missing\":%s}\n",
                reader.complete() ? "true" : "false", static_cast<unsigned long long>(c.can_frames),
                static_cast<unsigned long long>(c.can_flushes), static_cast<unsigned long long>(c.imu_samples),
                static_cast<unsigned long long>(c.imu_dropped_live), static_cast<unsigned long long>(c.gps_epochs),
                static_cast<unsigned long long>(c.gps_epochs_not_placed),
+               static_cast<unsigned long long>(pipeline.gpsValuesIgnored()),
                static_cast<unsigned long long>(c.calibration_reloads), static_cast<unsigned long long>(c.lost_lines),
                static_cast<unsigned long long>(c.bad_lines), c.start_missing ? "true" : "false");
   if (!c.first_bad_line.empty()) std::fprintf(stderr, "headingd-replay: first unreadable line: %s\n", c.first_bad_line.c_str());
@@ -133,7 +134,7 @@ int replayRecording(const RecordingReplayOptions& options) {
   if (rows) rows->close();
   if (estimates) estimates->close();
   printCounters(pipeline.estimator().counters(), totals);
-  printRecordingCounters(reader);
+  printRecordingCounters(reader, pipeline);
   return 0;
 }
 

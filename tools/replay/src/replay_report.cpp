@@ -23,8 +23,9 @@ void printMagCalibration(const core::MagCalibrationFit& fit) {
 }
 
 void printGps(const files::NmeaEpochs& gps, const core::HeadingPipeline& pipeline) {
-  std::fprintf(stderr, "{\"gps_epochs\":%zu,\"gps_epochs_used_for_declination\":%llu", gps.epochs.size(),
-               static_cast<unsigned long long>(pipeline.gpsEpochsUsedForDeclination()));
+  std::fprintf(stderr, "{\"gps_epochs\":%zu,\"gps_epochs_used_for_declination\":%llu,\"gps_values_ignored\":%llu",
+               gps.epochs.size(), static_cast<unsigned long long>(pipeline.gpsEpochsUsedForDeclination()),
+               static_cast<unsigned long long>(pipeline.gpsValuesIgnored()));
   nmea::forEachCounter(gps.counters, [](const char* name, std::uint64_t v) {
     std::fprintf(stderr, ",\"nmea_%s\":%llu", name, static_cast<unsigned long long>(v));
   });

@@ -61,7 +61,7 @@ class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
   const PlaybackClock* clock_;
   SampleRing<GpsRingEntry>* ring_;
   std::optional<std::int64_t> first_log_ns_;
-  std::int64_t first_day_ns_ = 0;
+  std::optional<std::int64_t> first_day_ns_;  // NmeaLogTime::logDayStart
   std::int64_t offset_ns_ = 0;
   std::size_t epochs_in_log_ = 0;
   bool end_missing_ = false;  // the gzip stream ended before its trailer
@@ -71,6 +71,7 @@ class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
   boost::asio::steady_timer start_timer_;
   std::atomic<bool> finished_{false};
   std::atomic<std::uint64_t> untimed_{0};
+  std::atomic<std::uint64_t> dates_not_believed_{0};  // NmeaLogTime::datesNotBelieved, for STATUS
 };
 
 }  // namespace headingd::daemon

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -46,8 +47,14 @@ struct ExportResult {
 // than one of headingd's types: "HEADING.csv", "MIXED.heading_t.csv".
 std::string tableFileName(const std::string& channel, const std::string& type, bool several_types);
 
-// Throws std::runtime_error when the log cannot be opened or read, or a table cannot be
-// written (the tables not yet in place are removed). A bad log is not thrown: its error is
+// A table whose file is the log itself (a log named DIR/HEADING.csv): refused before anything
+// is written, as a bad argument.
+struct TableOverLogError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Throws TableOverLogError (above); std::runtime_error when the log cannot be opened or read,
+// or a table cannot be written (the tables not yet in place are removed). A bad log is not thrown: its error is
 // in the result, after every table holds what came before it.
 ExportResult exportLcmLog(const ExportOptions& options);
 
