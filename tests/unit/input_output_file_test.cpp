@@ -4,8 +4,11 @@
 // appears under its name only when whole.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -98,6 +101,29 @@ TEST_F(OutputFiles, TheFileAppearsOnlyWhenCommittedAndAnEarlierOneStaysUntilThen
   out.write("new\n");
   out.commit();
   EXPECT_EQ(contents(path), "new\n");
+}
+
+// A tool killed while writing (Ctrl-C, a timeout's SIGTERM) leaves no temporary file behind,
+// and still dies of the signal (its parent sees that, not a normal exit).
+TEST_F(OutputFiles, AKilledRunLeavesNoTemporaryFile) {
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    const std::string path = writePlain("kept.csv", "earlier\n");
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      OutputFile out(path);
+      out.write("half a resu");
+      std::fflush(out.stream());
+      ::raise(signal_number);
+      ::_exit(0);  // not reached
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal_number) << "status " << status;
+    EXPECT_EQ(contents(path), "earlier\n");
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_), std::filesystem::directory_iterator()), 1)
+        << "a temporary file is left";
+  }
 }
 
 TEST_F(OutputFiles, ANewFileIsCreatedWithTheUsualMode) {

@@ -41,8 +41,9 @@ Columns:
 
 Output:
   stdout: one line per table: channel, type, rows, file (tab-separated).
-  Each table is written as <table>.csv.tmp and renamed into place at the end: an
-  interrupted run never leaves a half-written table under its final name. Tables of
+  Each table is written to a temporary file in DIR (.<table>.csv.XXXXXX) and renamed
+  into place at the end: a failed or interrupted run (also SIGINT, SIGTERM) never leaves a
+  half-written table under its final name, nor the temporary file. Tables of
   earlier exports into DIR are replaced only when this log has the same table.
 
 Exit status:

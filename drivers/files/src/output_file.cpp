@@ -1,5 +1,7 @@
 #include "headingd/files/output_file.hpp"
 
+#include "headingd/files/temporary_file_cleanup.hpp"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -45,6 +47,7 @@ OutputFile::OutputFile(const std::string& path) : path_(path), final_path_(path)
   if (fd < 0) throw FileError(path + ": cannot create a temporary file in " + folder.string() + ": " + errnoText());
   ::fchmod(fd, st.st_ino != 0 && S_ISREG(st.st_mode) ? (st.st_mode & 07777) : newFileMode());
   temp_path_ = temp;
+  cleanup_slot_ = removeOnFatalSignal(temp_path_.c_str());
   file_ = ::fdopen(fd, "w");
   if (file_ == nullptr) {
     ::close(fd);
@@ -56,6 +59,7 @@ OutputFile::OutputFile(const std::string& path) : path_(path), final_path_(path)
 OutputFile::~OutputFile() {
   if (file_ != nullptr) std::fclose(file_);
   if (!temp_path_.empty()) ::unlink(temp_path_.c_str());
+  forgetOnFatalSignal(cleanup_slot_);
 }
 
 void OutputFile::write(std::string_view text) {
@@ -81,6 +85,8 @@ void OutputFile::commit() {
     throw FileError(path_ + ": cannot rename the finished file into place: " + errnoText());
   }
   temp_path_.clear();
+  forgetOnFatalSignal(cleanup_slot_);
+  cleanup_slot_ = -1;
 }
 
 void refuseOutputOverInputs(const NamedPath& output, const std::vector<NamedPath>& inputs) {

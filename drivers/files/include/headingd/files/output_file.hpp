@@ -2,7 +2,9 @@
 // Every output file of the tools is written through this: into a temporary file in the same
 // folder (".NAME.XXXXXX"), renamed over NAME only when all was written (rename(2) is atomic
 // within a file system). A failed or interrupted run never leaves a half-written file under
-// the final name, and an existing file of that name stays as it was until the new one is whole.
+// the final name, and an existing file of that name stays as it was until the new one is whole;
+// the temporary file is removed when the run fails, and when it is killed by SIGINT, SIGTERM,
+// SIGHUP or SIGQUIT (temporary_file_cleanup.hpp).
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -36,6 +38,7 @@ class OutputFile {
   std::string path_;       // as given (messages)
   std::string final_path_; // what is replaced (a link's target)
   std::string temp_path_;  // "" when written directly
+  int cleanup_slot_ = -1;  // removeOnFatalSignal's, while temp_path_ exists
   std::FILE* file_ = nullptr;
   bool failed_ = false;
 };
