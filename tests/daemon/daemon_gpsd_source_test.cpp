@@ -62,21 +62,17 @@ std::string daemonConfig(const std::string& url, const std::string& gps_table) {
          "\"\ntime_axis = \"monotonic\"\n[gps]\n" + gps_table;
 }
 
-// The first `epochs` epochs of the capture, each its sentences (one NMEA time per epoch).
+// The first `epochs` epochs of the capture, each its sentences (GGA, RMC, VTG: a GGA starts one).
 std::vector<std::string> captureEpochs(std::size_t epochs) {
   std::ifstream in(kCapture);
   std::vector<std::string> out;
-  std::string previous_time;
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] == '#') continue;
-    const auto c1 = line.find(',');
-    const std::string time = line.substr(c1 + 1, line.find(',', c1 + 1) - c1 - 1);
-    if (time != previous_time) {
+    if (line.compare(3, 3, "GGA") == 0) {
       if (out.size() == epochs) break;
       out.emplace_back();
-      previous_time = time;
     }
-    out.back() += line + "\r\n";
+    if (!out.empty()) out.back() += line + "\r\n";
   }
   return out;
 }
@@ -135,7 +131,7 @@ TEST(DaemonGpsdSource, RealGpsdGivesTheSameFixesAsTheSerialSource) {
 
   const auto serial = lcm_serial.gps();
   const auto from_gpsd = lcm_gpsd.gps();
-  std::size_t serial_with_position = 0, gpsd_with_position = 0, matched = 0, hdop_compared = 0;
+  std::size_t serial_with_position = 0, gpsd_with_position = 0, matched = 0, hdop_compared = 0, without_date = 0;
   for (const auto& s : serial) serial_with_position += s.message.has_position ? 1 : 0;
   for (const auto& g : from_gpsd) {
     const auto& m = g.message;
@@ -156,14 +152,26 @@ TEST(DaemonGpsdSource, RealGpsdGivesTheSameFixesAsTheSerialSource) {
     ASSERT_NE(twin, nullptr) << "gpsd's fix at " << m.latitude_deg << ", " << m.longitude_deg << " is not the serial source's";
     ++matched;
     EXPECT_EQ(m.fix_ok, twin->fix_ok);
+    if (std::isnan(m.decimal_year)) {
+      // gpsd's first fix, while it still identifies the receiver: from the GGA alone (it
+      // passes on no RMC of that epoch, so no date, course or speed of the receiver's).
+      ++without_date;
+      continue;
+    }
     EXPECT_NEAR(m.height_m, twin->height_m, 0.01);
     EXPECT_NEAR(m.decimal_year, twin->decimal_year, 1e-9);
     ASSERT_EQ(m.has_course, twin->has_course) << m.latitude_deg;
-    if (m.has_course) EXPECT_NEAR(m.course_rad * kDeg, twin->course_rad * kDeg, 0.006);  // 0.01 deg in RMC
+    if (m.has_course) {
+      EXPECT_NEAR(m.course_rad * kDeg, twin->course_rad * kDeg, 0.006);  // 0.01 deg in RMC
+    }
     ASSERT_EQ(m.has_speed, twin->has_speed);
-    if (m.has_speed) EXPECT_NEAR(m.speed_mps, twin->speed_mps, 0.0006);  // gpsd prints mm/s
+    if (m.has_speed) {
+      EXPECT_NEAR(m.speed_mps, twin->speed_mps, 0.0006);  // gpsd prints mm/s
+    }
     ASSERT_EQ(m.has_magvar, twin->has_magvar);
-    if (m.has_magvar) EXPECT_NEAR(m.magvar_rad, twin->magvar_rad, 1e-9);
+    if (m.has_magvar) {
+      EXPECT_NEAR(m.magvar_rad, twin->magvar_rad, 1e-9);
+    }
     if (m.has_hdop && twin->has_hdop) {
       ++hdop_compared;
       EXPECT_NEAR(m.hdop, twin->hdop, 0.005);
@@ -172,6 +180,7 @@ TEST(DaemonGpsdSource, RealGpsdGivesTheSameFixesAsTheSerialSource) {
   // gpsd needs an epoch or two to recognise the receiver before it reports.
   EXPECT_GE(matched + 2, serial_with_position);
   EXPECT_EQ(matched, gpsd_with_position);
+  EXPECT_LE(without_date, 2u);
   const auto status = lcm_gpsd.status();
   ASSERT_FALSE(status.empty());
   const auto* source = findSource(status.back().message, "gps_gpsd");
@@ -181,8 +190,9 @@ TEST(DaemonGpsdSource, RealGpsdGivesTheSameFixesAsTheSerialSource) {
   EXPECT_EQ(counter(*source, "disconnects"), 0);
   std::fprintf(stderr,
                "serial source: %zu fixes (%zu with a position); gpsd source: %zu fixes (%zu with a position, %zu equal to "
-               "the serial source's, %zu with HDOP compared); gpsd TPV reports %lld, late %lld\n",
-               serial.size(), serial_with_position, from_gpsd.size(), gpsd_with_position, matched, hdop_compared,
+               "the serial source's, %zu of them without a date, %zu with HDOP compared); gpsd TPV reports %lld, late %lld\n",
+               serial.size(), serial_with_position, from_gpsd.size(), gpsd_with_position, matched, without_date,
+               hdop_compared,
                static_cast<long long>(counter(*source, "tpv_reports")),
                static_cast<long long>(counter(*source, "late_reports")));
 }
