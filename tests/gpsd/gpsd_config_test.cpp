@@ -8,7 +8,7 @@ namespace headingd::gpsd {
 namespace {
 
 GpsdConfig parse(const std::string& text) {
-  const toml::table doc = toml::parse(text, "test.toml");
+  const toml::table doc = toml::parse(text, std::string_view("test.toml"));
   return parseGpsdTable(doc["gps"].as_table(), "test.toml");
 }
 
