@@ -6,6 +6,7 @@
 #include "headingd/daemon/can_imu_source.hpp"
 #include "headingd/daemon/clocks.hpp"
 #include "headingd/daemon/recording_files.hpp"
+#include "headingd/daemon/gpsd_gps_source.hpp"
 #include "headingd/daemon/serial_gps_source.hpp"
 #include "headingd/recording/recording_format.hpp"
 #include "headingd/daemon/realtime.hpp"
@@ -28,7 +29,8 @@ class RecorderLineSink final : public recording::LineSink {
 bool hasLiveSource(const SourceConfigs& configs) {
   const auto* can = configs.find<CanSourceConfig>();
   const auto* gps = configs.find<SerialGpsSourceConfig>();
-  return (can != nullptr && can->enabled) || (gps != nullptr && gps->enabled);
+  const auto* gpsd = configs.find<GpsdGpsSourceConfig>();
+  return (can != nullptr && can->enabled) || (gps != nullptr && gps->enabled) || (gpsd != nullptr && gpsd->enabled);
 }
 
 }  // namespace

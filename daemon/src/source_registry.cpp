@@ -5,10 +5,10 @@
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/can_imu_source.hpp"
 #include "headingd/daemon/candump_log_source.hpp"
+#include "headingd/daemon/gps_source_kind.hpp"
 #include "headingd/daemon/imu_csv_source.hpp"
 #include "headingd/daemon/nmea_log_source.hpp"
 #include "headingd/daemon/recording_source.hpp"
-#include "headingd/daemon/serial_gps_source.hpp"
 
 namespace headingd::daemon {
 
@@ -26,7 +26,7 @@ const std::vector<SourceKind>& sourceKinds() {
   // sources are made in (their index on STATUS, the order of their rings).
   static const std::vector<SourceKind> kinds = {
       {"can", TimeAxis::kMonotonic, &parseCanSource, &createCanSource},
-      {"gps", TimeAxis::kMonotonic, &parseSerialGpsSource, &createSerialGpsSource},
+      {"gps", TimeAxis::kMonotonic, &parseGpsSource, &createGpsSource},  // serial or gpsd
       {"imu_csv", TimeAxis::kOwnFile, &parseImuCsvSource, &createImuCsvSource},
       {"candump_log", TimeAxis::kLogClock, &parseCandumpLogSource, &createCandumpLogSource},
       {"nmea_log", TimeAxis::kLogClock, &parseNmeaLogSource, &createNmeaLogSource},

@@ -42,8 +42,13 @@ while read -r table; do
     fail=1
   fi
   [[ -z "$keys" ]] || sed "s/^/$table./" <<<"$keys" >> "$work/accepted"
+  if [[ "$table" == gps ]]; then
+    # [gps] has a second key set, read when source = "gpsd" (host, port).
+    printf '[gps]\nsource = "gpsd"\nzz_probe_key = 1\n' > "$work/probe.toml"
+    accepted_list "$work/probe.toml" | sed "s/^/gps./" >> "$work/accepted"
+  fi
 done < "$work/tables"
-sort -o "$work/accepted" "$work/accepted"
+sort -u -o "$work/accepted" "$work/accepted"
 echo "keys the reader accepts: $(wc -l < "$work/accepted") in $(wc -l < "$work/tables") tables"
 if ! diff -u --label "keys the reader accepts" --label "keys documented in config/*.toml" "$work/accepted" "$work/documented"; then
   fail=1

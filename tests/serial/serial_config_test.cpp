@@ -78,7 +78,7 @@ TEST(GpsConfig, BadValuesNameFileLineKeyAndWhatWasExpected) {
             "test.toml:2: [gps] reopen_backoff_initial_s: 0 is out of range, expected 0.01 .. 60 s");
   EXPECT_EQ(errorOf("[gps]\nepoch_idle_s = true\n"), "test.toml:2: [gps] epoch_idle_s: expected a number in s");
   EXPECT_EQ(errorOf("[gps]\nbaudrate = 9600\n"),
-            "test.toml:2: [gps] baudrate: unknown key (expected one of: enabled, device, baud, "
+            "test.toml:2: [gps] baudrate: unknown key (expected one of: enabled, source, device, baud, "
             "reopen_backoff_initial_s, reopen_backoff_max_s, epoch_idle_s; config/gps.toml documents them)");
   EXPECT_EQ(errorOf("[gps]\nreopen_backoff_initial_s = 2\nreopen_backoff_max_s = 1\n"),
             "test.toml:3: [gps] reopen_backoff_max_s: 1 is below reopen_backoff_initial_s (2), expected max >= initial");

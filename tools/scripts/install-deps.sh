@@ -27,6 +27,9 @@ packages=(
   libglib2.0-dev       # liblcm-dev's pkg-config file requires glib
   default-jdk-headless # javac/jar: the lcm-spy jar of headingd's messages
   libsystemd-dev       # sd_notify, watchdog (daemon)
+  nlohmann-json3-dev   # gpsd's JSON reports ([gps] source = "gpsd")
+  gpsd                 # a real gpsd in the gpsd source's tests
+  gpsd-clients         # gpspipe in the gpsd tests
   systemd              # systemd-analyze verify in the tests; PID 1 of vm-run.sh --systemd
   dbus                 # the system bus systemd-analyze security asks (vm-run.sh --systemd)
   python3              # the systemd VM test's pty GPS and LCM log check (system interpreter)

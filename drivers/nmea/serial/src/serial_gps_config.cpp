@@ -35,6 +35,8 @@ SerialGpsConfig parseGpsTable(const toml::table* gps, const std::string& source)
   SerialGpsConfig c;
   core::TomlTableReader r(gps, source, "gps");
   c.enabled = r.boolean("enabled", c.enabled);
+  // The daemon hands [gps] tables with source = "gpsd" to drivers/gpsd instead.
+  r.choice("source", "serial", {"serial"});
   if (const toml::node* device = r.node("device")) {
     if (!device->is_string()) r.fail("device", "expected a string (the serial device path)");
     c.device = *device->value<std::string>();
