@@ -94,6 +94,9 @@ TEST(GpsdReport, IsoTimesWithAndWithoutFractions) {
   EXPECT_EQ(parseIsoUtcNs("2000-03-01T00:00:00.000Z"), 951'868'800'000'000'000);
   EXPECT_FALSE(parseIsoUtcNs("2000-03-01T00:00:00.000"));    // no Z: not UTC
   EXPECT_FALSE(parseIsoUtcNs("2000-03-01T24:00:00.000Z"));
+  EXPECT_FALSE(parseIsoUtcNs("6158-06-01T12:00:14Z"));      // beyond int64 nanoseconds (found by fuzzing)
+  EXPECT_FALSE(parseIsoUtcNs("-999-06-01T12:00:14Z"));
+  EXPECT_TRUE(parseIsoUtcNs("2200-12-31T23:59:59Z"));
   EXPECT_FALSE(parseIsoUtcNs("2000-03-01T00:00:00.000ZZ"));
 }
 

@@ -104,6 +104,8 @@ std::optional<std::int64_t> parseIsoUtcNs(std::string_view text) {
   if (static_cast<std::size_t>(n) != s.size() - 1) return std::nullopt;
   using namespace std::chrono;
   const year_month_day date{year(y), month(static_cast<unsigned>(mo)), day(static_cast<unsigned>(d))};
+  // Years past 2200 would overflow int64 nanoseconds (2262); none before 1970 is a GPS time.
+  if (y < 1970 || y > 2200) return std::nullopt;
   if (!date.ok() || h < 0 || h > 23 || mi < 0 || mi > 59 || !(sec >= 0.0 && sec < 61.0)) return std::nullopt;
   const std::int64_t days_ns = sys_days(date).time_since_epoch().count() * kNsPerDay;
   return days_ns + (static_cast<std::int64_t>(h) * 3600 + mi * 60) * 1'000'000'000 +
