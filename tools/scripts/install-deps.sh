@@ -43,6 +43,8 @@ packages=(
   lintian              # checks the Debian package (tests/package)
   clang                # the libFuzzer targets (tests/fuzz, tools/scripts/fuzz.sh)
   libclang-rt-14-dev   # libFuzzer and clang's sanitizer runtimes
+  gpsd                 # the [nmea_out] round trip: headingd -> NMEA over TCP -> gpsd (tests/daemon)
+  gpsd-clients         # gpspipe, the round trip's gpsd client
 )
 
 missing=()
