@@ -1,11 +1,12 @@
 #include "headingd/daemon/nmea_out_server.hpp"
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/ip/udp.hpp>
-#include <boost/asio/posix/stream_descriptor.hpp>
-#include <boost/asio/read.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/asio/write.hpp>
 #include <boost/lockfree/spsc_queue.hpp>
 #include <deque>
@@ -14,8 +15,6 @@
 #include <spdlog/spdlog.h>
 #include <stdexcept>
 #include <string>
-#include <sys/eventfd.h>
-#include <unistd.h>
 #include <vector>
 
 #include "headingd/daemon/clocks.hpp"
@@ -30,6 +29,15 @@ using asio::ip::udp;
 
 // Sends the estimator can hand over while the network thread is busy: seconds at any rate.
 constexpr std::size_t kHandoffCapacity = 256;
+// How often the network thread looks into the handoff ring: twice per send, at most every
+// 10 ms (a sentence leaves at most 10 ms after its tick), at least every 1 ms. Polling, as the
+// recorder's writer does, rather than a wake-up from the estimator: the estimator thread then
+// makes no system call and wakes no thread (daemon/README.md, "NMEA heading out", has what was
+// measured both ways).
+std::chrono::nanoseconds pollInterval(double rate_hz) {
+  const double s = std::clamp(0.5 / rate_hz, 0.001, 0.010);
+  return std::chrono::nanoseconds(static_cast<std::int64_t>(s * 1e9));
+}
 // Per client, in the kernel: a cap instead of autotuning, so a client that does not read
 // ties up a bounded amount of memory and its queue (client_queue) fills in bounded time.
 constexpr int kSocketSendBuffer = 8 * 1024;  // the kernel doubles it: 16 KiB, 15 s of sends at 10 Hz
@@ -53,7 +61,8 @@ class NmeaOutServer::Impl {
  public:
   Impl(const NmeaOutConfig& config, int burst, double interval_s)
       : config_(config),
-        wake_(io_),
+        poll_(io_),
+        poll_interval_(pollInterval(config.rate_hz)),
         connect_log_(burst, interval_s),
         garbage_log_(burst, interval_s),
         error_log_(burst, interval_s) {}
@@ -61,13 +70,10 @@ class NmeaOutServer::Impl {
   ~Impl() { stop(); }
 
   void start() {
-    const int fd = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
-    if (fd < 0) throw std::runtime_error("[nmea_out]: eventfd failed");
-    wake_fd_ = fd;
-    wake_.assign(fd);
     if (config_.tcp) openTcp();
     if (config_.udp) openUdp();
-    waitForWake();
+    poll_.expires_after(poll_interval_);
+    waitForPoll();
     if (acceptor_) accept();
     thread_ = std::thread([this] { io_.run(); });
   }
@@ -81,20 +87,13 @@ class NmeaOutServer::Impl {
     boost::system::error_code ec;
     if (acceptor_) acceptor_->close(ec);
     if (udp_) udp_->close(ec);
-    wake_.close(ec);  // closes the eventfd
-    wake_fd_ = -1;
   }
 
   bool offer(const NmeaOutBatch& batch) {
     if (batch.sentences == 0) return true;
-    if (!handoff_.push(batch)) {
-      dropped_.fetch_add(batch.sentences, std::memory_order_relaxed);
-      return false;
-    }
-    // A poke, never a wait: a non-blocking eventfd only refuses when its counter is near 2^64.
-    const std::uint64_t one = 1;
-    [[maybe_unused]] const ssize_t n = ::write(wake_fd_, &one, sizeof one);
-    return true;
+    if (handoff_.push(batch)) return true;
+    dropped_.fetch_add(batch.sentences, std::memory_order_relaxed);
+    return false;
   }
 
   NmeaOutCounters counters() const {
@@ -157,13 +156,14 @@ class NmeaOutServer::Impl {
     return s + " at " + fmt::format("{:g}", config_.rate_hz) + " Hz";
   }
 
-  void waitForWake() {
-    asio::async_read(wake_, asio::buffer(&wake_count_, sizeof wake_count_),
-                     [this](const boost::system::error_code& ec, std::size_t) {
-                       if (ec) return;  // closed: stopping
-                       distribute();
-                       waitForWake();
-                     });
+  // On absolute deadlines: a late wake-up does not shift the later ones.
+  void waitForPoll() {
+    poll_.async_wait([this](const boost::system::error_code& ec) {
+      if (ec) return;  // cancelled: stopping
+      distribute();
+      poll_.expires_at(poll_.expiry() + poll_interval_);
+      waitForPoll();
+    });
   }
 
   void distribute() {
@@ -303,9 +303,8 @@ class NmeaOutServer::Impl {
 
   const NmeaOutConfig config_;
   asio::io_context io_;
-  asio::posix::stream_descriptor wake_;
-  int wake_fd_ = -1;
-  std::uint64_t wake_count_ = 0;
+  asio::steady_timer poll_;
+  const std::chrono::nanoseconds poll_interval_;
   std::optional<tcp::acceptor> acceptor_;
   std::optional<udp::socket> udp_;
   udp::endpoint udp_target_;

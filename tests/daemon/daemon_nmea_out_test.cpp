@@ -128,6 +128,46 @@ class NmeaClient {
   std::atomic<std::uint64_t> bad_checksums_{0}, garbage_{0};
 };
 
+// Datagrams to 127.0.0.1:port, received on a thread of its own.
+class UdpReceiver {
+ public:
+  explicit UdpReceiver(int port) {
+    fd_ = socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in at{};
+    at.sin_family = AF_INET;
+    at.sin_port = htons(static_cast<std::uint16_t>(port));
+    at.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (bind(fd_, reinterpret_cast<sockaddr*>(&at), sizeof at) != 0) throw std::runtime_error("UDP bind failed");
+    timeval timeout{0, 100'000};
+    setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    thread_ = std::thread([this] {
+      char buffer[2048];
+      while (!stop_) {
+        const ssize_t n = recv(fd_, buffer, sizeof buffer, 0);
+        if (n <= 0) continue;
+        std::lock_guard lock(mutex_);
+        datagrams_.emplace_back(buffer, static_cast<std::size_t>(n));
+      }
+    });
+  }
+  ~UdpReceiver() {
+    stop_ = true;
+    thread_.join();
+    close(fd_);
+  }
+  std::vector<std::string> datagrams() const {
+    std::lock_guard lock(mutex_);
+    return datagrams_;
+  }
+
+ private:
+  int fd_ = -1;
+  std::atomic<bool> stop_{false};
+  mutable std::mutex mutex_;
+  std::vector<std::string> datagrams_;
+  std::thread thread_;
+};
+
 std::int64_t counter(const headingd::status_t& s, const std::string& name) {
   for (const auto& c : s.counters) {
     if (c.name == name) return c.value;
@@ -162,13 +202,15 @@ std::optional<T> decodeLine(std::optional<T> (*decoder)(const nmea::FieldList&, 
   return decoded;
 }
 
-// (a) Raw TCP clients: the sentences carry HEADING's true heading to their resolution, THS says
+// (a) Raw TCP clients and UDP datagrams: the sentences carry HEADING's true heading to their resolution, THS says
 // S (files), HDG adds up; clients come and go, one sends garbage: all counted on STATUS.
-TEST(DaemonNmeaOut, TcpClientsGetTheHeadingOfLcmWithinTheSentenceResolution) {
+TEST(DaemonNmeaOut, TcpClientsAndUdpGetTheHeadingOfLcmWithinTheSentenceResolution) {
   TempDir dir;
   const std::string url = lcmUrl(40);
-  const std::string config =
-      demoConfig(dir, url, 10.0, 100.0, "rate_hz = 10\nsentences = [\"HDT\", \"THS\", \"HDG\"]\n");
+  const std::string config = demoConfig(dir, url, 10.0, 100.0,
+                                        "rate_hz = 10\nsentences = [\"HDT\", \"THS\", \"HDG\"]\n"
+                                        "udp = true\nudp_port = 10111\n");
+  UdpReceiver udp(10111);
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   NmeaClient reader;
@@ -236,12 +278,26 @@ TEST(DaemonNmeaOut, TcpClientsGetTheHeadingOfLcmWithinTheSentenceResolution) {
   EXPECT_EQ(hdg, hdt);
   EXPECT_EQ(unmatched, 0u);
 
+  // UDP: one sentence a datagram, the same sentences as over TCP.
+  const std::vector<std::string> datagrams = udp.datagrams();
+  std::size_t udp_hdt = 0;
+  for (const std::string& d : datagrams) {
+    ASSERT_GE(d.size(), 6u);
+    EXPECT_EQ(d.substr(d.size() - 2), "\r\n");
+    EXPECT_EQ(d.find('$', 1), std::string::npos) << d;  // one sentence
+    EXPECT_EQ(nmea::verifyChecksum(d.substr(0, d.size() - 2)), nmea::ChecksumVerdict::kOk) << d;
+    udp_hdt += d.substr(3, 3) == "HDT";
+  }
+  EXPECT_GE(udp_hdt, hdt);  // UDP began before the TCP reader connected
+
   const headingd::status_t status = lcm.status().back().message;
   EXPECT_EQ(counter(status, "nmea_out_clients"), 2);
   EXPECT_EQ(counter(status, "nmea_out_connections"), 22);
   EXPECT_EQ(counter(status, "nmea_out_clients_refused"), 0);
   EXPECT_EQ(counter(status, "nmea_out_bytes_received"), static_cast<std::int64_t>(junk.size()));
-  EXPECT_GE(counter(status, "nmea_out_sentences_sent"), static_cast<std::int64_t>(lines.size()));
+  // Every sentence received was counted, but those of the last second (after the last STATUS:
+  // 30 a second to each of the two).
+  EXPECT_GE(counter(status, "nmea_out_sentences_sent"), static_cast<std::int64_t>(lines.size() + datagrams.size()) - 60);
   EXPECT_EQ(counter(status, "nmea_out_sentences_dropped"), 0);
   const std::string err = test::readFile(dir.file("err"));
   EXPECT_NE(err.find("nmea_out: serving HEHDT, HETHS, HEHDG at 10 Hz to TCP clients on 127.0.0.1 port 10110"),

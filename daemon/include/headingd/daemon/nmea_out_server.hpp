@@ -1,8 +1,9 @@
 #pragma once
 // [nmea_out]'s network side: a TCP server (any number of clients up to max_clients) and/or
 // UDP datagrams, on a Boost.Asio thread of its own. The estimator thread hands each send over
-// with offer(): a copy into a lock-free single-producer ring and a poke of an eventfd, so it
-// never waits for the network and never allocates. The network thread gives every client its
+// with offer(): a copy into a lock-free single-producer ring, nothing more (no system call, no
+// wake-up), so it never waits for the network and never allocates; the network thread looks
+// into the ring on a timer (twice per send, every 1 to 10 ms). The network thread gives every client its
 // own bounded queue; a client that reads too slowly (or not at all) gets its newest sends
 // dropped and counted, and never holds up the others. Whatever a client sends is read,
 // discarded and counted (headingd only speaks). daemon/README.md, "NMEA heading out".
@@ -54,8 +55,8 @@ class NmeaOutServer {
   // Closes every socket and joins the thread. Idempotent.
   void stop();
 
-  // Estimator thread only: never blocks, never allocates. False when the handoff ring was
-  // full (the network thread is stuck; counted as dropped).
+  // Estimator thread only: never blocks, never allocates, no system call. False when the
+  // handoff ring was full (the network thread is stuck; counted as dropped).
   bool offer(const NmeaOutBatch& batch);
 
   // Any thread; relaxed reads of the counters.
