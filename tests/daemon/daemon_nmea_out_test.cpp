@@ -414,17 +414,24 @@ TEST(DaemonNmeaOut, GpsdReadsTheHeadingAndReportsItAsAtt) {
 }
 
 // (c) A client that never reads: its queue fills and its sends are dropped and counted, while
-// a reading client gets every send and the estimator keeps its rate.
+// a reading client gets every send and the estimator keeps its rate; a third client, beyond
+// max_clients, is closed at once.
 TEST(DaemonNmeaOut, AClientThatNeverReadsStallsNeitherTheOthersNorTheEstimator) {
   TempDir dir;
   const std::string url = lcmUrl(44);
   constexpr double kRate = 200.0;
   const std::string config = demoConfig(dir, url, 1.0, kRate,
-                                        "rate_hz = 200\nsentences = [\"HDT\", \"THS\", \"HDG\"]\nclient_queue = 16\n");
+                                        "rate_hz = 200\nsentences = [\"HDT\", \"THS\", \"HDG\"]\nclient_queue = 16\n"
+                                        "max_clients = 2\n");
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   NmeaClient dead(false, 1024);
   NmeaClient reader;
+  {
+    NmeaClient third;  // beyond max_clients: closed at once, and reads nothing
+    std::this_thread::sleep_for(200ms);
+    EXPECT_TRUE(third.lines().empty());
+  }
   const bool dropping = waitUntil(
       [&] {
         const auto s = lcm.status();
@@ -445,6 +452,7 @@ TEST(DaemonNmeaOut, AClientThatNeverReadsStallsNeitherTheOthersNorTheEstimator) 
 
   EXPECT_GT(counter(after.message, "nmea_out_sentences_dropped"), counter(before.message, "nmea_out_sentences_dropped"));
   EXPECT_EQ(counter(after.message, "nmea_out_clients"), 2);
+  EXPECT_EQ(counter(after.message, "nmea_out_clients_refused"), 1);
   // The reader: three sentences a tick at 200 Hz, at least half of them (the machine is shared).
   const double reader_rate = static_cast<double>(lines_after - lines_before) / (t1 - t0);
   EXPECT_GE(reader_rate, 0.5 * 3 * kRate) << "sentences/s to the reading client";
