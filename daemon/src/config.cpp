@@ -28,7 +28,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   toml::table doc = core::parseTomlDocument(text, source);
 
   // The daemon's own tables; the sources' are the registry's.
-  std::vector<std::string> tables = {"daemon", "log", "realtime", "rings", "lcm", "estimator", "recorder"};
+  std::vector<std::string> tables = {"daemon", "log", "realtime", "rings", "lcm", "estimator", "recorder", "nmea_out"};
   for (std::string& t : sourceTableNames()) tables.push_back(std::move(t));
   core::rejectUnknownTables(doc, source, tables);
 
@@ -92,6 +92,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
 
   c.estimator = core::parseEstimatorTable(doc["estimator"].as_table(), source);
   c.recorder = parseRecorderTable(doc["recorder"].as_table(), source, base_dir);
+  c.nmea_out = parseNmeaOutTable(doc["nmea_out"].as_table(), source, c.rate_hz);
 
   c.sources = parseSourceTables(doc, source, base_dir);
   return c;

@@ -56,6 +56,9 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
     spdlog::info("log playback: speed {}x, start delay {} s, at end: {}", configs.playback.speed,
                  configs.playback.start_delay_s, atEndName(configs.playback.at_end));
   }
+  if (config_.nmea_out.enabled) {
+    nmea_out_ = std::make_unique<NmeaOutServer>(config_.nmea_out, config_.log.repeat_burst, config_.log.repeat_interval_s);
+  }
   if (sources_.empty()) spdlog::warn("no source is configured: STATUS will say degraded (no IMU data)");
 }
 
@@ -107,6 +110,11 @@ void Daemon::start() {
                                           std::move(calibration_));
   startRecorder();
   if (recorder_ != nullptr) loop_->setRecorder(recorder_sinks_[2].get(), recorder_.get());
+  if (nmea_out_ != nullptr) {
+    nmea_out_->start();  // a port that is taken stops start-up here (exit status 1)
+    // Files are a replay: THS says S (simulator) for them.
+    loop_->setNmeaOut(nmea_out_.get(), !hasLiveSource(config_.sources));
+  }
   loop_thread_ = std::thread([this] { loop_->run(); });
   // Read by the log sources from their own threads, which start below.
   playback_clock_.start_mono_ns = monotonicNs() + std::llround(config_.sources.playback.start_delay_s * 1e9);
@@ -130,6 +138,7 @@ void Daemon::stop() {
   }
   if (loop_ != nullptr) loop_->stop();
   if (loop_thread_.joinable()) loop_thread_.join();
+  if (nmea_out_ != nullptr) nmea_out_->stop();  // after its producer
   if (recorder_ != nullptr) recorder_->stop();  // after every producer
 }
 

@@ -207,6 +207,23 @@ void EstimatorLoop::setRecorder(recording::LineSink* sink, const Recorder* recor
   recorder_status_ = recorder;
 }
 
+void EstimatorLoop::setNmeaOut(NmeaOutServer* server, bool from_files) {
+  nmea_out_ = server;
+  nmea_from_files_ = from_files;
+  nmea_every_ticks_ = static_cast<std::uint64_t>(std::max(1LL, std::llround(config_.rate_hz / config_.nmea_out.rate_hz)));
+}
+
+void EstimatorLoop::sendNmea(Validity v) {
+  if (nmea_out_ == nullptr) return;
+  if (ticks_to_nmea_ > 0) {
+    --ticks_to_nmea_;
+    return;
+  }
+  ticks_to_nmea_ = nmea_every_ticks_ - 1;
+  formatNmeaOut(config_.nmea_out, pipeline_.output(), v, nmea_from_files_, nmea_batch_);
+  nmea_out_->offer(nmea_batch_);
+}
+
 void EstimatorLoop::logRingDrops(std::int64_t wake_ns) {
   // Ring drops happen on the producer side, which must not log; they are logged here.
   std::size_t i = 0;
@@ -296,6 +313,7 @@ void EstimatorLoop::publishEstimate(std::int64_t now_ns, std::int64_t utime_us) 
   const bool heading_ok = publisher_.publish(config_.lcm.heading_channel, heading_msg_);
   const bool attitude_ok = publisher_.publish(config_.lcm.attitude_channel, attitude_msg_);
   if (heading_ok && attitude_ok) ++published_.heading;
+  sendNmea(v);
   if (consumed_this_tick_) {
     const std::int64_t age = monotonicNs() - imu_.last_used_arrival_ns;
     timing_total_.sample_age.record(age);
@@ -322,6 +340,7 @@ void EstimatorLoop::publishStatus(std::int64_t now_ns, std::int64_t utime_us) {
   m.publish_errors = static_cast<std::int64_t>(publisher_.errors());
   fillCounters(m, pipeline_.estimator().counters(), loopCounters());
   if (recorder_status_ != nullptr) appendRecorderCounters(m, recorder_status_->counters());
+  if (nmea_out_ != nullptr) appendNmeaOutCounters(m, nmea_out_->counters());
   if (publisher_.publish(config_.lcm.status_channel, m)) ++published_.status;
 
   // One line for people: systemctl status (STATUS=) and, if asked, stdout.

@@ -135,6 +135,12 @@ void appendRecorderCounters(status_t& m, const RecorderCounters& recorder) {
   m.num_counters = static_cast<std::int32_t>(i);
 }
 
+void appendNmeaOutCounters(status_t& m, const NmeaOutCounters& nmea_out) {
+  auto i = static_cast<std::size_t>(m.num_counters);
+  forEachNmeaOutCounter(nmea_out, [&](std::string_view name, std::uint64_t value) { setCounter(m.counters, i++, name, value); });
+  m.num_counters = static_cast<std::int32_t>(i);
+}
+
 void formatStatusLine(const status_t& m, const core::HeadingOutput& h, Validity v, std::string& out) {
   char line[400];
   std::snprintf(line, sizeof line,

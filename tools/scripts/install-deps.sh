@@ -28,8 +28,8 @@ packages=(
   default-jdk-headless # javac/jar: the lcm-spy jar of headingd's messages
   libsystemd-dev       # sd_notify, watchdog (daemon)
   nlohmann-json3-dev   # gpsd's JSON reports ([gps] source = "gpsd")
-  gpsd                 # a real gpsd in the gpsd source's tests
-  gpsd-clients         # gpspipe in the gpsd tests
+  gpsd                 # a real gpsd in the tests: [gps] source = "gpsd", and [nmea_out] -> gpsd
+  gpsd-clients         # gpspipe, the tests' gpsd client
   systemd              # systemd-analyze verify in the tests; PID 1 of vm-run.sh --systemd
   dbus                 # the system bus systemd-analyze security asks (vm-run.sh --systemd)
   python3              # the systemd VM test's pty GPS and LCM log check (system interpreter)

@@ -10,6 +10,7 @@
 
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/params_toml.hpp"  // core::ConfigError
+#include "headingd/daemon/nmea_out_config.hpp"
 #include "headingd/daemon/recorder_config.hpp"
 #include "headingd/daemon/source_config.hpp"
 
@@ -58,6 +59,7 @@ struct DaemonConfig {
   LogConfig log;
   core::EstimatorParams estimator;
   RecorderConfig recorder;  // [recorder]: the black box
+  NmeaOutConfig nmea_out;   // [nmea_out]: the heading as NMEA over TCP/UDP
   // [playback] and the source tables, each read by its kind (source_registry.hpp).
   SourceConfigs sources;
 };

@@ -10,6 +10,7 @@
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/estimator_loop.hpp"
 #include "headingd/daemon/lcm_publisher.hpp"
+#include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/daemon/playback_clock.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/daemon/recording_files.hpp"
@@ -62,6 +63,7 @@ class Daemon {
   std::vector<std::unique_ptr<Source>> sources_;
   SystemdNotifier notifier_;
   std::unique_ptr<LcmPublisher> publisher_;
+  std::unique_ptr<NmeaOutServer> nmea_out_;  // [nmea_out] (null: off); stopped after the loop
   std::unique_ptr<EstimatorLoop> loop_;
   std::thread loop_thread_;
   bool sources_started_ = false;

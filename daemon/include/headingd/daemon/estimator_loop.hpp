@@ -25,6 +25,8 @@
 #include "headingd/daemon/latency_histogram.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
 #include "headingd/daemon/lcm_publisher.hpp"
+#include "headingd/daemon/nmea_out_server.hpp"
+#include "headingd/daemon/nmea_out_sentences.hpp"
 #include "headingd/daemon/repeat_limiter.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/recorder.hpp"
@@ -76,6 +78,10 @@ class EstimatorLoop {
   // in, and STATUS its counters. Set before run().
   void setRecorder(recording::LineSink* sink, const Recorder* recorder);
 
+  // [nmea_out] (null: off): every round(rate_hz / [nmea_out] rate_hz) ticks the estimate just
+  // published as HEADING goes out as NMEA sentences; THS says S when `from_files`. Set before run().
+  void setNmeaOut(NmeaOutServer* server, bool from_files);
+
  private:
   // The steps of one tick, in order.
   void tick(std::int64_t wake_ns, bool last_tick);
@@ -88,6 +94,7 @@ class EstimatorLoop {
   void releasePlacedEpochs(std::int64_t utime_us);
   void publishEstimate(std::int64_t now_ns, std::int64_t utime_us);
   void publishStatus(std::int64_t now_ns, std::int64_t utime_us);
+  void sendNmea(Validity v);
   LoopCounters loopCounters() const;
   void reloadCalibration();
   bool sourcesWantExit() const;
@@ -126,6 +133,11 @@ class EstimatorLoop {
   std::uint64_t imu_processed_ = 0;  // every IMU sample given to the pipeline, used or not
   std::unique_ptr<recording::EstimatorStreamRecorder> recorder_;
   const Recorder* recorder_status_ = nullptr;
+  NmeaOutServer* nmea_out_ = nullptr;
+  bool nmea_from_files_ = false;
+  std::uint64_t nmea_every_ticks_ = 1;
+  std::uint64_t ticks_to_nmea_ = 0;
+  NmeaOutBatch nmea_batch_;
 
   // Freshness.
   std::int64_t start_ns_ = 0;

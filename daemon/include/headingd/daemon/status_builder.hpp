@@ -13,6 +13,7 @@
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/latency_histogram.hpp"
+#include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/daemon/ring_entries.hpp"
@@ -87,6 +88,8 @@ void fillCounters(status_t& m, const core::EstimatorCounters& estimator, const L
 // The recorder's counters ("recorder_lines_written", ...) after those already in `m`: call it
 // after fillCounters.
 void appendRecorderCounters(status_t& m, const RecorderCounters& recorder);
+// [nmea_out]'s counters ("nmea_out_clients", ...) after those already in `m`.
+void appendNmeaOutCounters(status_t& m, const NmeaOutCounters& nmea_out);
 
 // The one line for people, from a filled message and the estimate it describes.
 void formatStatusLine(const status_t& m, const core::HeadingOutput& h, Validity v, std::string& out);

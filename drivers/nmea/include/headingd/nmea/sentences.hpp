@@ -107,6 +107,22 @@ struct Hdt {
   std::optional<double> heading_deg;
 };
 
+// True heading with a mode indicator (THS, NMEA 0183 3.0: A autonomous, E estimated, M
+// manual, S simulator, V not valid). Heading sensors send it, not GNSS receivers: decoded
+// by decodeThs on its own, not by decodeSentence (headingd's [nmea_out] is checked with it).
+struct Ths {
+  std::optional<double> heading_deg;
+  std::optional<char> mode;
+};
+
+// Magnetic sensor heading, deviation and variation (HDG), east positive; decoded by
+// decodeHdg on its own, as THS.
+struct Hdg {
+  std::optional<double> heading_deg;
+  std::optional<double> deviation_deg;
+  std::optional<double> variation_deg;
+};
+
 // UTC date and time with a four-digit year.
 struct Zda {
   std::optional<std::int64_t> time_of_day_ns;
@@ -152,6 +168,8 @@ std::optional<Gsa> decodeGsa(const FieldList& f, int& invalid_fields);
 std::optional<Gst> decodeGst(const FieldList& f, int& invalid_fields);
 std::optional<Hdt> decodeHdt(const FieldList& f, int& invalid_fields);
 std::optional<Zda> decodeZda(const FieldList& f, int& invalid_fields);
+std::optional<Ths> decodeThs(const FieldList& f, int& invalid_fields);
+std::optional<Hdg> decodeHdg(const FieldList& f, int& invalid_fields);
 std::optional<Gll> decodeGll(const FieldList& f, int& invalid_fields);
 
 }  // namespace headingd::nmea
