@@ -53,7 +53,10 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   log.rejectUnknownKeys();
 
   TomlTableReader realtime(doc["realtime"].as_table(), source, "realtime");
-  c.realtime.sched_fifo_priority = static_cast<int>(realtime.integer("sched_fifo_priority", 0, 0, 99));
+  c.realtime.sched_fifo_priority =
+      static_cast<int>(realtime.integer("sched_fifo_priority", c.realtime.sched_fifo_priority, 0, 99));
+  c.realtime.driver_fifo_priority =
+      static_cast<int>(realtime.integer("driver_fifo_priority", c.realtime.driver_fifo_priority, 0, 99));
   for (const std::int64_t cpu : realtime.integerArray("cpu_affinity", 0, 1023)) {
     c.realtime.cpu_affinity.push_back(static_cast<int>(cpu));
   }

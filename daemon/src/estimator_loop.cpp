@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <pthread.h>
 #include <spdlog/spdlog.h>
 #include <time.h>
 #include <tuple>
@@ -40,7 +41,7 @@ bool gpsByTime(const GpsRingEntry& a, const GpsRingEntry& b) {
 EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagneticModel* wmm,
                              std::vector<SampleRing<ImuRingEntry>*> imu_rings,
                              std::vector<SampleRing<GpsRingEntry>*> gps_rings, std::vector<Source*> sources,
-                             LcmPublisher& publisher, SystemdNotifier& notifier,
+                             LcmPublisher& publisher, SystemdNotifier& notifier, RealtimeSettings& realtime,
                              core::CalibratedImuStream calibration)
     : config_(config),
       pipeline_(config.estimator, wmm),
@@ -50,6 +51,7 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
       sources_(std::move(sources)),
       publisher_(publisher),
       notifier_(notifier),
+      realtime_(realtime),
       period_ns_(static_cast<std::int64_t>(std::llround(1e9 / config.rate_hz))),
       imu_timeout_ns_(static_cast<std::int64_t>(config.imu_timeout_s * 1e9)),
       status_period_ns_(static_cast<std::int64_t>(config.status_period_s * 1e9)),
@@ -73,7 +75,8 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
 }
 
 void EstimatorLoop::run() {
-  applyThreadRealtime(config_.realtime);
+  pthread_setname_np(pthread_self(), "estimator");
+  realtime_.applyToEstimatorThread();
   start_ns_ = monotonicNs();
   last_status_ns_ = start_ns_;
   std::int64_t deadline = start_ns_ + period_ns_;
@@ -321,6 +324,7 @@ void EstimatorLoop::publishStatus(std::int64_t now_ns, std::int64_t utime_us) {
   published_at_last_status_ = published_;
   m.publish_errors = static_cast<std::int64_t>(publisher_.errors());
   fillCounters(m, pipeline_.estimator().counters(), loopCounters());
+  fillRealtimeStatus(m, realtime_.report());
   if (recorder_status_ != nullptr) appendRecorderCounters(m, recorder_status_->counters());
   if (publisher_.publish(config_.lcm.status_channel, m)) ++published_.status;
 

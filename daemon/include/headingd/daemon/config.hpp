@@ -15,10 +15,13 @@
 
 namespace headingd::daemon {
 
+// [realtime]: real-time by default; each setting the system refuses is said once and the
+// daemon runs on without it (realtime.hpp).
 struct RealtimeConfig {
-  int sched_fifo_priority = 0;     // 0 = normal scheduling; 1..99 = SCHED_FIFO for the estimator thread
-  std::vector<int> cpu_affinity;   // empty = any CPU
-  bool lock_memory = false;        // mlockall(MCL_CURRENT | MCL_FUTURE)
+  int sched_fifo_priority = 50;    // 0 = normal scheduling; 1..99 = SCHED_FIFO for the estimator thread
+  int driver_fifo_priority = 55;   // the same for the threads of the sources that read at real-time pace
+  std::vector<int> cpu_affinity;   // empty = any CPU (the estimator thread)
+  bool lock_memory = true;         // mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT)
 };
 
 struct LcmConfig {

@@ -11,6 +11,7 @@
 #include "headingd/daemon/estimator_loop.hpp"
 #include "headingd/daemon/lcm_publisher.hpp"
 #include "headingd/daemon/playback_clock.hpp"
+#include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/daemon/recording_files.hpp"
 #include "headingd/daemon/source_registry.hpp"
@@ -61,6 +62,7 @@ class Daemon {
   PlaybackClock playback_clock_;  // shared by the log sources; before them, so it outlives them
   std::vector<std::unique_ptr<Source>> sources_;
   SystemdNotifier notifier_;
+  std::unique_ptr<RealtimeSettings> realtime_;  // [realtime], for the process and each thread
   std::unique_ptr<LcmPublisher> publisher_;
   std::unique_ptr<EstimatorLoop> loop_;
   std::thread loop_thread_;

@@ -27,6 +27,7 @@
 #include "headingd/daemon/lcm_publisher.hpp"
 #include "headingd/daemon/repeat_limiter.hpp"
 #include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/recording/stream_recorders.hpp"
 #include "headingd/daemon/sample_ring.hpp"
@@ -60,7 +61,7 @@ class EstimatorLoop {
   EstimatorLoop(const DaemonConfig& config, const core::WorldMagneticModel* wmm,
                 std::vector<SampleRing<ImuRingEntry>*> imu_rings, std::vector<SampleRing<GpsRingEntry>*> gps_rings,
                 std::vector<Source*> sources, LcmPublisher& publisher, SystemdNotifier& notifier,
-                core::CalibratedImuStream calibration);
+                RealtimeSettings& realtime, core::CalibratedImuStream calibration);
 
   // Runs ticks on the calling thread until stop() or until a source asked for it (at_end =
   // "exit"), no file source is playing any more and their data is processed.
@@ -108,6 +109,7 @@ class EstimatorLoop {
   std::vector<std::string> source_names_;  // by source_index, for the IMU/GPS messages
   LcmPublisher& publisher_;
   SystemdNotifier& notifier_;
+  RealtimeSettings& realtime_;  // applied by run() to its thread; STATUS reports what it got
 
   std::int64_t period_ns_;
   std::int64_t imu_timeout_ns_;
