@@ -41,6 +41,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   c.imu_timeout_s = daemon.number("imu_timeout_s", c.imu_timeout_s, 0.01, 60.0, "s");
   c.status_period_s = daemon.number("status_period_s", c.status_period_s, 0.1, 60.0, "s");
   c.console_status = daemon.boolean("console_status", c.console_status);
+  c.publish_on_imu = daemon.choice("publish", c.publish_on_imu ? "imu" : "tick", {"tick", "imu"}) == "imu";
   c.wmm_path = readablePath(daemon, "wmm", c.wmm_path, base_dir, true, files::kWmmFileLimit);
   c.calibration_path = readablePath(daemon, "calibration", c.calibration_path, base_dir, true, files::kConfigFileLimit);
   daemon.rejectUnknownKeys();

@@ -107,6 +107,10 @@ void Daemon::start() {
                                           std::move(calibration_));
   startRecorder();
   if (recorder_ != nullptr) loop_->setRecorder(recorder_sinks_[2].get(), recorder_.get());
+  if (config_.publish_on_imu) {
+    for (auto& r : imu_rings_) r->setDoorbell(&doorbell_);
+    loop_->setDoorbell(&doorbell_);
+  }
   loop_thread_ = std::thread([this] { loop_->run(); });
   // Read by the log sources from their own threads, which start below.
   playback_clock_.start_mono_ns = monotonicNs() + std::llround(config_.sources.playback.start_delay_s * 1e9);

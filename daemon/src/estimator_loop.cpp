@@ -82,6 +82,7 @@ void EstimatorLoop::run() {
   std::int64_t deadline = start_ns_ + period_ns_;
   bool ready_sent = false;
   while (!stop_requested_.load(std::memory_order_relaxed)) {
+    if (doorbell_ != nullptr) publishArrivalsUntil(deadline);
     const timespec ts = toTimespec(deadline);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
     }
@@ -102,6 +103,28 @@ void EstimatorLoop::run() {
     }
   }
   finished_.store(true);
+}
+
+void EstimatorLoop::publishArrivalsUntil(std::int64_t deadline) {
+  // The tick still runs at its deadline (STATUS, watchdog, stale data, GPS epochs without IMU
+  // data) and publishes as always; between ticks each arrival is estimated and published
+  // at once, so a heading is as old as the driver's and this work, not the tick's phase.
+  const timespec ts = toTimespec(deadline);
+  std::uint32_t handled = doorbell_->count();
+  while (!stop_requested_.load(std::memory_order_relaxed)) {
+    const std::uint32_t seen = doorbell_->count();
+    if (monotonicNs() >= deadline) return;
+    if (seen == handled) {
+      doorbell_->waitWhile(seen, ts);
+      continue;
+    }
+    handled = seen;
+    const std::int64_t utime_us = realtimeNs() / 1000;
+    drainRings();
+    putInTimeOrder();
+    feedPipeline(monotonicNs(), false, utime_us);
+    if (consumed_this_tick_) publishEstimate(monotonicNs(), utime_us);
+  }
 }
 
 void EstimatorLoop::recordTickTiming(std::int64_t jitter_ns, std::int64_t processing_ns) {

@@ -96,6 +96,8 @@ TEST(DaemonConfig, RealtimeIsTheDefaultAndCanBeTurnedOff) {
 }
 
 TEST_F(DaemonConfigErrors, NotOneOfTheChoices) {
+  const std::string p = errorOf(dir, "[daemon]\npublish = \"sample\"\n");
+  EXPECT_NE(p.find(at(2) + "[daemon] publish: 'sample' is not one of \"tick\", \"imu\""), std::string::npos) << p;
   const std::string e = errorOf(dir, "[imu_csv]\nat_end = \"bounce\"\n");
   EXPECT_NE(e.find(at(2) + "[imu_csv] at_end: 'bounce' is not one of \"stay\", \"exit\", \"loop\""), std::string::npos)
       << e;
@@ -200,6 +202,7 @@ TEST(DaemonConfig, ShippedDefaultsFileMatchesTheCompiledDefaults) {
   EXPECT_EQ(shipped.imu_timeout_s, d.imu_timeout_s);
   EXPECT_EQ(shipped.status_period_s, d.status_period_s);
   EXPECT_EQ(shipped.console_status, d.console_status);
+  EXPECT_EQ(shipped.publish_on_imu, d.publish_on_imu);
   EXPECT_EQ(shipped.imu_ring_capacity, d.imu_ring_capacity);
   EXPECT_EQ(shipped.gps_ring_capacity, d.gps_ring_capacity);
   EXPECT_EQ(shipped.realtime.sched_fifo_priority, d.realtime.sched_fifo_priority);

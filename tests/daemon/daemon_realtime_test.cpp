@@ -4,6 +4,7 @@
 // (/proc/<pid>/task/*/stat) and STATUS over real LCM.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <pthread.h>
 #include <sched.h>
@@ -164,6 +165,38 @@ TEST(DaemonRealtime, RefusedSchedulingIsSaidOnceAndTheDaemonRunsOnWithNormalSche
   EXPECT_EQ(count("real-time scheduling refused"), 1u) << err;
   EXPECT_EQ(count("continuing with normal scheduling"), 1u) << err;
   EXPECT_EQ(count("mlockall refused"), 1u) << err;
+}
+
+// [daemon] publish = "imu": besides the tick's, HEADING goes out as each IMU sample arrives,
+// so there is about one HEADING per IMU sample on top of the ticks', and the newest sample
+// is much younger at publish than a tick period.
+TEST(DaemonRealtime, PublishOnImuSendsAHeadingForEachSampleAsItArrives) {
+  TempDir dir;
+  const std::string url = lcmUrl(23);
+  const std::string config =
+      dir.write("imu.toml", "[lcm]\nurl = \"" + url + "\"\n[daemon]\npublish = \"imu\"\n[imu_csv]\nenabled = true\npath = \"" +
+                                std::string(HEADINGD_CONFIG_DIR) +
+                                "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz\"\n");
+  LcmCollector lcm(url);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  ASSERT_TRUE(waitUntil([&] { return lcm.imu().size() >= 500; }, 5s)) << test::readFile(dir.file("err"));
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.waitFor(2s), 0);
+  lcm.stop();
+  const auto headings = lcm.heading();
+  const auto imu = lcm.imu();
+  // 286 samples/s and 100 ticks/s: about 386 HEADING a second for 286 IMU.
+  EXPECT_GT(static_cast<double>(headings.size()), 1.2 * static_cast<double>(imu.size()))
+      << headings.size() << " HEADING, " << imu.size() << " IMU";
+  std::vector<std::int64_t> ages;
+  for (const auto& h : headings) {
+    if (h.message.validity == headingd::heading_t::VALIDITY_FRESH) ages.push_back(h.message.sample_age_us);
+  }
+  ASSERT_FALSE(ages.empty());
+  std::sort(ages.begin(), ages.end());
+  // Each sample's HEADING is published at once, so most are far younger than the IMU
+  // period (3.5 ms) the tick's phase alone would give (median 1.8 ms there).
+  EXPECT_LT(ages[ages.size() / 2], 1000) << "median sample age, us";
 }
 
 }  // namespace

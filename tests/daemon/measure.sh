@@ -5,12 +5,13 @@
 # With --load N it keeps N CPU hogs busy for the run (the normal life of a small computer that
 # also logs, records and serves) and stops them after.
 #
-# Usage: tests/daemon/measure.sh [--seconds N] [--speed X] [--rate HZ] [--load N]
+# Usage: tests/daemon/measure.sh [--seconds N] [--speed X] [--rate HZ] [--publish WHEN] [--load N]
 #                                [--fifo PRIO] [--driver-fifo PRIO] [--normal] [--cpu N]
 #                                [--build DIR]
 #   --seconds N          how long to run (default 30)
 #   --speed X            play speed of the recording (default 1 = real time, 286 IMU samples/s)
 #   --rate HZ            estimator rate (default 100)
+#   --publish WHEN       [daemon] publish: tick (default) or imu
 #   --load N             N busy-looping processes for the run (default 0), each at normal
 #                        scheduling, stopped when the script ends (also on Ctrl-C)
 #   --fifo PRIO          [realtime] sched_fifo_priority (default: the shipped default, 50)
@@ -25,19 +26,20 @@
 set -euo pipefail
 export LC_ALL=C
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-seconds=30 speed=1 rate=100 load=0 fifo= driver_fifo= normal=0 cpu= build=
+seconds=30 speed=1 rate=100 publish=tick load=0 fifo= driver_fifo= normal=0 cpu= build=
 while [[ $# -gt 0 ]]; do
   case $1 in
     --seconds) seconds=$2; shift 2 ;;
     --speed) speed=$2; shift 2 ;;
     --rate) rate=$2; shift 2 ;;
     --load) load=$2; shift 2 ;;
+    --publish) publish=$2; shift 2 ;;
     --fifo) fifo=$2; shift 2 ;;
     --driver-fifo) driver_fifo=$2; shift 2 ;;
     --normal) normal=1; shift ;;
     --cpu) cpu=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
-    -h|--help) sed -n '2,25s/^# \{0,1\}//p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,26s/^# \{0,1\}//p' "$0"; exit 0 ;;
     *) echo "measure.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -63,6 +65,7 @@ port=$((30000 + $$ % 20000))
 cat >"$tmp/measure.toml" <<TOML
 [daemon]
 rate_hz = $rate
+publish = "$publish"
 [realtime]
 cpu_affinity = [${cpu}]
 $( ((normal)) && printf 'sched_fifo_priority = 0\ndriver_fifo_priority = 0\nlock_memory = false\n' )
@@ -110,7 +113,7 @@ grep -E 'SCHED_FIFO|affinity|mlockall|memory locked|refused' "$tmp/err" | sed 's
 if ((normal)); then sched="normal scheduling"; else sched="SCHED_FIFO ${fifo:-50} (drivers ${driver_fifo:-55}) unless refused"; fi
 ticks=$(json ticks)
 cat <<REPORT
-headingd on BROAD trial 05 at ${speed}x real time, estimator at $rate Hz, ${seconds} s, $sched$( [[ -n $cpu ]] && echo ", on CPU $cpu"), $load CPU hog(s) on $(nproc) CPUs
+headingd on BROAD trial 05 at ${speed}x real time, estimator at $rate Hz (publish = $publish), ${seconds} s, $sched$( [[ -n $cpu ]] && echo ", on CPU $cpu"), $load CPU hog(s) on $(nproc) CPUs
   ticks                $ticks, deadline misses $(json deadline_misses)
   tick jitter          median $(json tick_jitter_p50_us) us, p99 $(json tick_jitter_p99_us) us, max $(json tick_jitter_max_us) us   (wake-up minus deadline)
   processing per tick  median $(json processing_p50_us) us, p99 $(json processing_p99_us) us, max $(json processing_max_us) us   (drain, estimate, publish)

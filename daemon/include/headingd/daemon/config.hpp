@@ -50,6 +50,7 @@ struct DaemonConfig {
   double imu_timeout_s = 0.5;
   double status_period_s = 1.0;
   bool console_status = false;  // one status line per status period on stdout
+  bool publish_on_imu = false;  // [daemon] publish = "imu": also publish as each IMU sample arrives
   std::string wmm_path;         // World Magnetic Model coefficients ("" = none)
   std::string calibration_path; // IMU calibration (headingd-calibrate --out; "" = none), re-read on SIGHUP
   // [rings]

@@ -8,6 +8,7 @@
 
 #include "headingd/core/wmm.hpp"
 #include "headingd/daemon/config.hpp"
+#include "headingd/daemon/doorbell.hpp"
 #include "headingd/daemon/estimator_loop.hpp"
 #include "headingd/daemon/lcm_publisher.hpp"
 #include "headingd/daemon/playback_clock.hpp"
@@ -62,7 +63,8 @@ class Daemon {
   PlaybackClock playback_clock_;  // shared by the log sources; before them, so it outlives them
   std::vector<std::unique_ptr<Source>> sources_;
   SystemdNotifier notifier_;
-  std::unique_ptr<RealtimeSettings> realtime_;  // [realtime], for the process and each thread
+  std::unique_ptr<RealtimeSettings> realtime_;
+  Doorbell doorbell_;  // [daemon] publish = "imu": the IMU rings wake the estimator  // [realtime], for the process and each thread
   std::unique_ptr<LcmPublisher> publisher_;
   std::unique_ptr<EstimatorLoop> loop_;
   std::thread loop_thread_;

@@ -76,10 +76,15 @@ class EstimatorLoop {
   // The black box (null: not recording): its estimator stream gets where each GPS epoch went
   // in, and STATUS its counters. Set before run().
   void setRecorder(recording::LineSink* sink, const Recorder* recorder);
+  // [daemon] publish = "imu": the doorbell the rings ring on each push. Set before run().
+  void setDoorbell(Doorbell* doorbell) { doorbell_ = doorbell; }
 
  private:
   // The steps of one tick, in order.
   void tick(std::int64_t wake_ns, bool last_tick);
+  // [daemon] publish = "imu": until `deadline`, estimates and publishes what arrives as it
+  // arrives (woken by the rings' doorbell).
+  void publishArrivalsUntil(std::int64_t deadline);
   void drainRings();
   void putInTimeOrder();
   void feedPipeline(std::int64_t wake_ns, bool last_tick, std::int64_t utime_us);
@@ -115,6 +120,7 @@ class EstimatorLoop {
   std::int64_t imu_timeout_ns_;
   std::int64_t status_period_ns_;
   std::atomic<bool> stop_requested_{false};
+  Doorbell* doorbell_ = nullptr;  // null: publish once a tick only
   std::atomic<bool> finished_{false};
   std::atomic<bool> reload_requested_{false};
 
