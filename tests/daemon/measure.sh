@@ -50,6 +50,8 @@ bin=$build/daemon/headingd
 [[ -x $bin ]] || { echo "measure.sh: no headingd binary in ${build:-build-daemon or build}" >&2; exit 1; }
 
 [[ $load =~ ^[0-9]+$ ]] || { echo "measure.sh: --load takes a number of processes" >&2; exit 2; }
+# --normal: both priorities 0 unless --fifo or --driver-fifo say otherwise.
+if ((normal)); then fifo=${fifo:-0} driver_fifo=${driver_fifo:-0}; fi
 
 tmp=$(mktemp -d)
 hogs=()
@@ -68,9 +70,9 @@ rate_hz = $rate
 publish = "$publish"
 [realtime]
 cpu_affinity = [${cpu}]
-$( ((normal)) && printf 'sched_fifo_priority = 0\ndriver_fifo_priority = 0\nlock_memory = false\n' )
 $( [[ -n $fifo ]] && echo "sched_fifo_priority = $fifo" )
 $( [[ -n $driver_fifo ]] && echo "driver_fifo_priority = $driver_fifo" )
+$( ((normal)) && echo "lock_memory = false" )
 [lcm]
 url = "udpm://239.255.76.67:$port?ttl=0"
 [imu_csv]
@@ -110,7 +112,7 @@ summary=$(grep -o 'summary {.*}' "$tmp/err" | tail -n 1 | sed 's/^summary //')
 [[ -n $summary ]] || { echo "measure.sh: no summary from headingd:" >&2; cat "$tmp/err" >&2; exit 1; }
 json() { printf '%s\n' "$summary" | sed -n "s/.*\"$1\":\([-0-9.e]*\).*/\1/p"; }
 grep -E 'SCHED_FIFO|affinity|mlockall|memory locked|refused' "$tmp/err" | sed 's/^/  log: /' || true
-if ((normal)); then sched="normal scheduling"; else sched="SCHED_FIFO ${fifo:-50} (drivers ${driver_fifo:-55}) unless refused"; fi
+sched="SCHED_FIFO ${fifo:-50} (drivers ${driver_fifo:-55}; 0 = normal scheduling) unless refused, memory $( ((normal)) && echo pageable || echo locked)"
 ticks=$(json ticks)
 cat <<REPORT
 headingd on BROAD trial 05 at ${speed}x real time, estimator at $rate Hz (publish = $publish), ${seconds} s, $sched$( [[ -n $cpu ]] && echo ", on CPU $cpu"), $load CPU hog(s) on $(nproc) CPUs
