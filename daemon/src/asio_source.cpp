@@ -23,7 +23,10 @@ void AsioSourceBase::start() {
       tick();
     }
   });
-  thread_ = std::thread([this] { io_.run(); });
+  thread_ = std::thread([this] {
+    runThreadStartHook();
+    io_.run();
+  });
 }
 
 void AsioSourceBase::tick() {

@@ -41,6 +41,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   c.imu_timeout_s = daemon.number("imu_timeout_s", c.imu_timeout_s, 0.01, 60.0, "s");
   c.status_period_s = daemon.number("status_period_s", c.status_period_s, 0.1, 60.0, "s");
   c.console_status = daemon.boolean("console_status", c.console_status);
+  c.publish_on_imu = daemon.choice("publish", c.publish_on_imu ? "imu" : "tick", {"tick", "imu"}) == "imu";
   c.wmm_path = readablePath(daemon, "wmm", c.wmm_path, base_dir, true, files::kWmmFileLimit);
   c.calibration_path = readablePath(daemon, "calibration", c.calibration_path, base_dir, true, files::kConfigFileLimit);
   daemon.rejectUnknownKeys();
@@ -53,7 +54,10 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   log.rejectUnknownKeys();
 
   TomlTableReader realtime(doc["realtime"].as_table(), source, "realtime");
-  c.realtime.sched_fifo_priority = static_cast<int>(realtime.integer("sched_fifo_priority", 0, 0, 99));
+  c.realtime.sched_fifo_priority =
+      static_cast<int>(realtime.integer("sched_fifo_priority", c.realtime.sched_fifo_priority, 0, 99));
+  c.realtime.driver_fifo_priority =
+      static_cast<int>(realtime.integer("driver_fifo_priority", c.realtime.driver_fifo_priority, 0, 99));
   for (const std::int64_t cpu : realtime.integerArray("cpu_affinity", 0, 1023)) {
     c.realtime.cpu_affinity.push_back(static_cast<int>(cpu));
   }

@@ -1,5 +1,6 @@
 #include "headingd/daemon/daemon.hpp"
 
+#include <pthread.h>
 #include <spdlog/spdlog.h>
 
 #include "headingd/core/wmm_coefficients.hpp"
@@ -95,7 +96,8 @@ void Daemon::startRecorder() {
 }
 
 void Daemon::start() {
-  applyMemoryLock(config_.realtime);
+  realtime_ = std::make_unique<RealtimeSettings>(config_.realtime);
+  realtime_->lockMemory();
   publisher_ = std::make_unique<LcmPublisher>(config_.lcm.url);
   if (config_.lcm.url.rfind("udpm://", 0) == 0 && config_.lcm.url.find("ttl=0") == std::string::npos) {
     spdlog::warn("LCM URL {} has no ttl=0: messages may leave this machine", config_.lcm.url);
@@ -106,7 +108,7 @@ void Daemon::start() {
   for (auto& r : gps_rings_) gps.push_back(r.get());
   std::vector<Source*> sources;
   for (auto& s : sources_) sources.push_back(s.get());
-  loop_ = std::make_unique<EstimatorLoop>(config_, wmm_.get(), imu, gps, sources, *publisher_, notifier_,
+  loop_ = std::make_unique<EstimatorLoop>(config_, wmm_.get(), imu, gps, sources, *publisher_, notifier_, *realtime_,
                                           std::move(calibration_));
   startRecorder();
   if (recorder_ != nullptr) loop_->setRecorder(recorder_sinks_[2].get(), recorder_.get());
@@ -115,10 +117,21 @@ void Daemon::start() {
     // Files are a replay: THS says S (simulator) for them.
     loop_->setNmeaOut(nmea_out_.get(), !hasLiveSource(config_.sources));
   }
+  if (config_.publish_on_imu) {
+    for (auto& r : imu_rings_) r->setDoorbell(&doorbell_);
+    loop_->setDoorbell(&doorbell_);
+  }
   loop_thread_ = std::thread([this] { loop_->run(); });
   // Read by the log sources from their own threads, which start below.
   playback_clock_.start_mono_ns = monotonicNs() + std::llround(config_.sources.playback.start_delay_s * 1e9);
-  for (auto& s : sources_) s->start();
+  for (auto& s : sources_) {
+    // Named for ps, top and the tests ("src:can"); the kernel keeps 15 characters.
+    s->setThreadStartHook([this, name = s->name(), driver = s->readsAtRealTimePace()] {
+      pthread_setname_np(pthread_self(), ("src:" + name).substr(0, 15).c_str());
+      if (driver) realtime_->applyToDriverThread(name);
+    });
+    s->start();
+  }
   sources_started_ = true;
   spdlog::info("running: estimator at {} Hz, LCM {} (channels {}, {}, {}, {}, {}){}", config_.rate_hz,
                config_.lcm.url, config_.lcm.heading_channel, config_.lcm.attitude_channel, config_.lcm.imu_channel,

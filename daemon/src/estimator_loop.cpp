@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <pthread.h>
 #include <spdlog/spdlog.h>
 #include <time.h>
 #include <tuple>
@@ -40,7 +41,7 @@ bool gpsByTime(const GpsRingEntry& a, const GpsRingEntry& b) {
 EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagneticModel* wmm,
                              std::vector<SampleRing<ImuRingEntry>*> imu_rings,
                              std::vector<SampleRing<GpsRingEntry>*> gps_rings, std::vector<Source*> sources,
-                             LcmPublisher& publisher, SystemdNotifier& notifier,
+                             LcmPublisher& publisher, SystemdNotifier& notifier, RealtimeSettings& realtime,
                              core::CalibratedImuStream calibration)
     : config_(config),
       pipeline_(config.estimator, wmm),
@@ -50,6 +51,7 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
       sources_(std::move(sources)),
       publisher_(publisher),
       notifier_(notifier),
+      realtime_(realtime),
       period_ns_(static_cast<std::int64_t>(std::llround(1e9 / config.rate_hz))),
       imu_timeout_ns_(static_cast<std::int64_t>(config.imu_timeout_s * 1e9)),
       status_period_ns_(static_cast<std::int64_t>(config.status_period_s * 1e9)),
@@ -73,12 +75,14 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
 }
 
 void EstimatorLoop::run() {
-  applyThreadRealtime(config_.realtime);
+  pthread_setname_np(pthread_self(), "estimator");
+  realtime_.applyToEstimatorThread();
   start_ns_ = monotonicNs();
   last_status_ns_ = start_ns_;
   std::int64_t deadline = start_ns_ + period_ns_;
   bool ready_sent = false;
   while (!stop_requested_.load(std::memory_order_relaxed)) {
+    if (doorbell_ != nullptr) publishArrivalsUntil(deadline);
     const timespec ts = toTimespec(deadline);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
     }
@@ -99,6 +103,28 @@ void EstimatorLoop::run() {
     }
   }
   finished_.store(true);
+}
+
+void EstimatorLoop::publishArrivalsUntil(std::int64_t deadline) {
+  // The tick still runs at its deadline (STATUS, watchdog, stale data, GPS epochs without IMU
+  // data) and publishes as always; between ticks each arrival is estimated and published
+  // at once, so a heading is as old as the driver's and this work, not the tick's phase.
+  const timespec ts = toTimespec(deadline);
+  std::uint32_t handled = doorbell_->count();
+  while (!stop_requested_.load(std::memory_order_relaxed)) {
+    const std::uint32_t seen = doorbell_->count();
+    if (monotonicNs() >= deadline) return;
+    if (seen == handled) {
+      doorbell_->waitWhile(seen, ts);
+      continue;
+    }
+    handled = seen;
+    const std::int64_t utime_us = realtimeNs() / 1000;
+    drainRings();
+    putInTimeOrder();
+    feedPipeline(monotonicNs(), false, utime_us);
+    if (consumed_this_tick_) publishEstimate(monotonicNs(), utime_us);
+  }
 }
 
 void EstimatorLoop::recordTickTiming(std::int64_t jitter_ns, std::int64_t processing_ns) {
@@ -339,6 +365,7 @@ void EstimatorLoop::publishStatus(std::int64_t now_ns, std::int64_t utime_us) {
   published_at_last_status_ = published_;
   m.publish_errors = static_cast<std::int64_t>(publisher_.errors());
   fillCounters(m, pipeline_.estimator().counters(), loopCounters());
+  fillRealtimeStatus(m, realtime_.report());
   if (recorder_status_ != nullptr) appendRecorderCounters(m, recorder_status_->counters());
   if (nmea_out_ != nullptr) appendNmeaOutCounters(m, nmea_out_->counters());
   if (publisher_.publish(config_.lcm.status_channel, m)) ++published_.status;

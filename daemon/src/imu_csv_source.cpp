@@ -66,7 +66,12 @@ ImuCsvSource::ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, s
 
 ImuCsvSource::~ImuCsvSource() { stop(); }
 
-void ImuCsvSource::start() { thread_ = std::thread([this] { run(); }); }
+void ImuCsvSource::start() {
+  thread_ = std::thread([this] {
+    runThreadStartHook();
+    run();
+  });
+}
 
 void ImuCsvSource::stop() {
   {

@@ -102,6 +102,14 @@ void fillTickTiming(status_t& m, const TickTiming& window) {
   m.sample_age_p99_us = f.sample_age_p99_us;
 }
 
+void fillRealtimeStatus(status_t& m, const RealtimeReport& realtime) {
+  if (m.estimator_policy != realtime.estimator.policy) m.estimator_policy = realtime.estimator.policy;
+  m.estimator_priority = realtime.estimator.priority;
+  if (m.driver_policy != realtime.drivers.policy) m.driver_policy = realtime.drivers.policy;
+  m.driver_priority = realtime.drivers.priority;
+  m.memory_locked = realtime.memory_locked;
+}
+
 void fillRates(status_t& m, const PublishedCounts& now, const PublishedCounts& at_last_status, double window_s) {
   m.heading_rate_hz = static_cast<double>(now.heading - at_last_status.heading) / window_s;
   m.imu_rate_hz = static_cast<double>(now.imu - at_last_status.imu) / window_s;

@@ -72,9 +72,32 @@ TEST_F(DaemonConfigErrors, OutOfRange) {
   EXPECT_NE(e.find(at(2) + "[daemon] rate_hz: 5000 is out of range, expected 1 .. 2000 Hz"), std::string::npos) << e;
   const std::string p = errorOf(dir, "\n[realtime]\nsched_fifo_priority = 100\n");
   EXPECT_NE(p.find(at(3) + "[realtime] sched_fifo_priority: 100 is out of range"), std::string::npos) << p;
+  const std::string d = errorOf(dir, "[realtime]\ndriver_fifo_priority = -1\n");
+  const std::string expected = "[realtime] driver_fifo_priority: -1 is out of range, expected an integer 0 .. 99";
+  EXPECT_NE(d.find(at(2) + expected), std::string::npos) << d;
+}
+
+// Real time by default: the estimator and the driver threads under SCHED_FIFO, the drivers
+// above the estimator (config/headingd.toml says why), memory locked; 0 and false turn them off.
+TEST(DaemonConfig, RealtimeIsTheDefaultAndCanBeTurnedOff) {
+  const DaemonConfig d;
+  EXPECT_EQ(d.realtime.sched_fifo_priority, 50);
+  EXPECT_EQ(d.realtime.driver_fifo_priority, 55);
+  EXPECT_TRUE(d.realtime.lock_memory);
+  const DaemonConfig demo = loadDaemonConfig(HEADINGD_CONFIG_DIR "/demo.toml");
+  EXPECT_EQ(demo.realtime.sched_fifo_priority, 50);
+  EXPECT_EQ(demo.realtime.driver_fifo_priority, 55);
+  EXPECT_TRUE(demo.realtime.lock_memory);
+  const DaemonConfig off = parseDaemonConfig(
+      "[realtime]\nsched_fifo_priority = 0\ndriver_fifo_priority = 0\nlock_memory = false\n", "off.toml", "");
+  EXPECT_EQ(off.realtime.sched_fifo_priority, 0);
+  EXPECT_EQ(off.realtime.driver_fifo_priority, 0);
+  EXPECT_FALSE(off.realtime.lock_memory);
 }
 
 TEST_F(DaemonConfigErrors, NotOneOfTheChoices) {
+  const std::string p = errorOf(dir, "[daemon]\npublish = \"sample\"\n");
+  EXPECT_NE(p.find(at(2) + "[daemon] publish: 'sample' is not one of \"tick\", \"imu\""), std::string::npos) << p;
   const std::string e = errorOf(dir, "[imu_csv]\nat_end = \"bounce\"\n");
   EXPECT_NE(e.find(at(2) + "[imu_csv] at_end: 'bounce' is not one of \"stay\", \"exit\", \"loop\""), std::string::npos)
       << e;
@@ -179,9 +202,11 @@ TEST(DaemonConfig, ShippedDefaultsFileMatchesTheCompiledDefaults) {
   EXPECT_EQ(shipped.imu_timeout_s, d.imu_timeout_s);
   EXPECT_EQ(shipped.status_period_s, d.status_period_s);
   EXPECT_EQ(shipped.console_status, d.console_status);
+  EXPECT_EQ(shipped.publish_on_imu, d.publish_on_imu);
   EXPECT_EQ(shipped.imu_ring_capacity, d.imu_ring_capacity);
   EXPECT_EQ(shipped.gps_ring_capacity, d.gps_ring_capacity);
   EXPECT_EQ(shipped.realtime.sched_fifo_priority, d.realtime.sched_fifo_priority);
+  EXPECT_EQ(shipped.realtime.driver_fifo_priority, d.realtime.driver_fifo_priority);
   EXPECT_EQ(shipped.realtime.cpu_affinity, d.realtime.cpu_affinity);
   EXPECT_EQ(shipped.realtime.lock_memory, d.realtime.lock_memory);
   EXPECT_EQ(shipped.lcm.url, d.lcm.url);

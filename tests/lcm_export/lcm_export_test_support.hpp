@@ -236,7 +236,9 @@ inline headingd::status_t awkwardStatus(AwkwardValues& v, const std::vector<std:
   m.num_rings = 1;
   v.fill(m.rate_hz, m.ticks, m.deadline_misses, m.tick_jitter_p50_us, m.tick_jitter_p99_us, m.tick_jitter_max_us,
          m.processing_p50_us, m.processing_p99_us, m.processing_max_us, m.sample_age_p50_us, m.sample_age_p99_us,
-         m.heading_rate_hz, m.imu_rate_hz, m.gps_rate_hz, m.publish_errors);
+         m.heading_rate_hz, m.imu_rate_hz, m.gps_rate_hz, m.publish_errors, m.estimator_policy,
+         m.estimator_priority, m.driver_policy, m.driver_priority);
+  m.memory_locked = v.i8() % 2 != 0;
   m.counters = {counter("gate_gap", v.i64()), counter("weird, \"name\"", v.i64())};
   if (odd_counters) {
     m.counters.push_back(counter("gate_gap", v.i64()));

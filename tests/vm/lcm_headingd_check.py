@@ -9,7 +9,9 @@ nested structs without one, strings as int32 length with the NUL, then the bytes
   STATUS   rate_hz (the configured tick rate), ticks and deadline_misses: between the first
            and the last STATUS of the log, every tick period must be a tick or a counted
            missed deadline (the loop keeps its 100 Hz schedule), and there must be one
-           HEADING per tick (none lost on the way)
+           HEADING per tick (none lost on the way); the last STATUS must report SCHED_FIFO
+           for the estimator and the driver threads and memory locked (real time by
+           default: the unit grants what the shipped [realtime] asks for)
   GPS      at least --min-gps epochs
 
 usage: lcm_headingd_check.py LOG [--min-heading-hz F] [--min-fresh F] [--min-gps N]
@@ -72,7 +74,13 @@ def status_schedule(payload):
     for _ in range(r.take("i")):  # ring_status_t: name, capacity, high_water, pushed, dropped
         r.string(), r.take("i"), r.take("i"), r.take("q"), r.take("q")
     rate_hz = r.take("d")
-    return uptime_us, rate_hz, r.take("q"), r.take("q")
+    ticks, misses = r.take("q"), r.take("q")
+    for _ in range(11):  # jitter, processing, sample age percentiles; message rates
+        r.take("d")
+    r.take("q")  # publish_errors
+    # The real-time settings in use: estimator policy and priority, drivers', memory locked.
+    realtime = (r.string(), r.take("i"), r.string(), r.take("i"), r.take("b") != 0)
+    return uptime_us, rate_hz, ticks, misses, realtime
 
 
 def main():
@@ -109,7 +117,7 @@ def main():
     if len(statuses) < 2:
         report(False, f"STATUS: {len(statuses)} message(s), two are needed for the tick schedule")
     else:
-        (t0, (up0, rate_hz, ticks0, miss0)), (t1, (up1, _, ticks1, miss1)) = statuses[0], statuses[-1]
+        (t0, (up0, rate_hz, ticks0, miss0, _)), (t1, (up1, _, ticks1, miss1, realtime)) = statuses[0], statuses[-1]
         ticks, misses, dt = ticks1 - ticks0, miss1 - miss0, (up1 - up0) * 1e-6
         periods = dt * rate_hz
         report(abs(ticks + misses - periods) <= max(2.0, 0.02 * periods),
@@ -119,6 +127,11 @@ def main():
         between = sum(1 for t, _ in headings if t0 <= t <= t1)
         report(abs(between - ticks) <= max(2, 0.02 * ticks),
                f"HEADING per tick: {between} HEADING between those STATUS messages for {ticks} ticks")
+        # Real time by default: the unit grants what the shipped [realtime] asks for.
+        policy, priority, driver_policy, driver_priority, locked = realtime
+        report(policy == "SCHED_FIFO" and driver_policy == "SCHED_FIFO" and locked,
+               f"STATUS: estimator {policy} {priority}, drivers {driver_policy} {driver_priority}, memory locked "
+               f"{locked} (expected SCHED_FIFO for both, memory locked)")
     report(gps >= args.min_gps, f"GPS: {gps} epochs (at least {args.min_gps})")
     sys.exit(1 if failures else 0)
 

@@ -37,6 +37,7 @@ class CanImuSource final : public AsioSource<can::AssemblerCounters> {
   ~CanImuSource() override;
 
   const char* kind() const override { return "can"; }
+  bool readsAtRealTimePace() const override { return true; }
   void report(SourceReport& out) const override;
 
  private:

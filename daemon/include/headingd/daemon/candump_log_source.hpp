@@ -53,6 +53,7 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
   ~CandumpLogSource() override;
 
   const char* kind() const override { return "candump_log"; }
+  bool readsAtRealTimePace() const override { return clock_->speed <= 1.0; }
   void report(SourceReport& out) const override;
   bool wantsExit() const override { return finished_.load() && at_end_ == AtEnd::kExit; }
   bool playing() const override { return !finished_.load(); }

@@ -16,10 +16,13 @@
 
 namespace headingd::daemon {
 
+// [realtime]: real-time by default; each setting the system refuses is said once and the
+// daemon runs on without it (realtime.hpp).
 struct RealtimeConfig {
-  int sched_fifo_priority = 0;     // 0 = normal scheduling; 1..99 = SCHED_FIFO for the estimator thread
-  std::vector<int> cpu_affinity;   // empty = any CPU
-  bool lock_memory = false;        // mlockall(MCL_CURRENT | MCL_FUTURE)
+  int sched_fifo_priority = 50;    // 0 = normal scheduling; 1..99 = SCHED_FIFO for the estimator thread
+  int driver_fifo_priority = 55;   // the same for the threads of the sources that read at real-time pace
+  std::vector<int> cpu_affinity;   // empty = any CPU (the estimator thread)
+  bool lock_memory = true;         // mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT)
 };
 
 struct LcmConfig {
@@ -48,6 +51,7 @@ struct DaemonConfig {
   double imu_timeout_s = 0.5;
   double status_period_s = 1.0;
   bool console_status = false;  // one status line per status period on stdout
+  bool publish_on_imu = false;  // [daemon] publish = "imu": also publish as each IMU sample arrives
   std::string wmm_path;         // World Magnetic Model coefficients ("" = none)
   std::string calibration_path; // IMU calibration (headingd-calibrate --out; "" = none), re-read on SIGHUP
   // [rings]

@@ -8,10 +8,12 @@
 
 #include "headingd/core/wmm.hpp"
 #include "headingd/daemon/config.hpp"
+#include "headingd/daemon/doorbell.hpp"
 #include "headingd/daemon/estimator_loop.hpp"
 #include "headingd/daemon/lcm_publisher.hpp"
 #include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/daemon/playback_clock.hpp"
+#include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/daemon/recording_files.hpp"
 #include "headingd/daemon/source_registry.hpp"
@@ -62,6 +64,8 @@ class Daemon {
   PlaybackClock playback_clock_;  // shared by the log sources; before them, so it outlives them
   std::vector<std::unique_ptr<Source>> sources_;
   SystemdNotifier notifier_;
+  std::unique_ptr<RealtimeSettings> realtime_;
+  Doorbell doorbell_;  // [daemon] publish = "imu": the IMU rings wake the estimator  // [realtime], for the process and each thread
   std::unique_ptr<LcmPublisher> publisher_;
   std::unique_ptr<NmeaOutServer> nmea_out_;  // [nmea_out] (null: off); stopped after the loop
   std::unique_ptr<EstimatorLoop> loop_;

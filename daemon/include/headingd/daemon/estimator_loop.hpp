@@ -29,6 +29,7 @@
 #include "headingd/daemon/nmea_out_sentences.hpp"
 #include "headingd/daemon/repeat_limiter.hpp"
 #include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/recording/stream_recorders.hpp"
 #include "headingd/daemon/sample_ring.hpp"
@@ -62,7 +63,7 @@ class EstimatorLoop {
   EstimatorLoop(const DaemonConfig& config, const core::WorldMagneticModel* wmm,
                 std::vector<SampleRing<ImuRingEntry>*> imu_rings, std::vector<SampleRing<GpsRingEntry>*> gps_rings,
                 std::vector<Source*> sources, LcmPublisher& publisher, SystemdNotifier& notifier,
-                core::CalibratedImuStream calibration);
+                RealtimeSettings& realtime, core::CalibratedImuStream calibration);
 
   // Runs ticks on the calling thread until stop() or until a source asked for it (at_end =
   // "exit"), no file source is playing any more and their data is processed.
@@ -77,6 +78,8 @@ class EstimatorLoop {
   // The black box (null: not recording): its estimator stream gets where each GPS epoch went
   // in, and STATUS its counters. Set before run().
   void setRecorder(recording::LineSink* sink, const Recorder* recorder);
+  // [daemon] publish = "imu": the doorbell the rings ring on each push. Set before run().
+  void setDoorbell(Doorbell* doorbell) { doorbell_ = doorbell; }
 
   // [nmea_out] (null: off): every round(rate_hz / [nmea_out] rate_hz) ticks the estimate just
   // published as HEADING goes out as NMEA sentences; THS says S when `from_files`. Set before run().
@@ -85,6 +88,9 @@ class EstimatorLoop {
  private:
   // The steps of one tick, in order.
   void tick(std::int64_t wake_ns, bool last_tick);
+  // [daemon] publish = "imu": until `deadline`, estimates and publishes what arrives as it
+  // arrives (woken by the rings' doorbell).
+  void publishArrivalsUntil(std::int64_t deadline);
   void drainRings();
   void putInTimeOrder();
   void feedPipeline(std::int64_t wake_ns, bool last_tick, std::int64_t utime_us);
@@ -115,11 +121,13 @@ class EstimatorLoop {
   std::vector<std::string> source_names_;  // by source_index, for the IMU/GPS messages
   LcmPublisher& publisher_;
   SystemdNotifier& notifier_;
+  RealtimeSettings& realtime_;  // applied by run() to its thread; STATUS reports what it got
 
   std::int64_t period_ns_;
   std::int64_t imu_timeout_ns_;
   std::int64_t status_period_ns_;
   std::atomic<bool> stop_requested_{false};
+  Doorbell* doorbell_ = nullptr;  // null: publish once a tick only
   std::atomic<bool> finished_{false};
   std::atomic<bool> reload_requested_{false};
 

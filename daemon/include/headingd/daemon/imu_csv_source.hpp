@@ -50,6 +50,7 @@ class ImuCsvSource final : public Source {
 
   const std::string& name() const override { return name_; }
   const char* kind() const override { return "imu_csv"; }
+  bool readsAtRealTimePace() const override { return config_.speed <= 1.0; }
   void start() override;
   void stop() override;
   void report(SourceReport& out) const override;

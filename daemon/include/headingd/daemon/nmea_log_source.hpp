@@ -43,6 +43,7 @@ class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
   ~NmeaLogSource() override;
 
   const char* kind() const override { return "nmea_log"; }
+  bool readsAtRealTimePace() const override { return clock_->speed <= 1.0; }
   void report(SourceReport& out) const override;
   bool wantsExit() const override { return finished_.load() && at_end_ == AtEnd::kExit; }
   bool playing() const override { return !finished_.load(); }

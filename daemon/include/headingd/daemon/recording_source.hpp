@@ -38,6 +38,7 @@ class RecordingSource final : public AsioSource<recording::RecordingCounters> {
   ~RecordingSource() override;
 
   const char* kind() const override { return "recording"; }
+  bool readsAtRealTimePace() const override { return clock_->speed <= 1.0; }
   void report(SourceReport& out) const override;
   bool wantsExit() const override { return finished_.load() && at_end_ == AtEnd::kExit; }
   bool playing() const override { return !finished_.load(); }

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <string>
 
+#include "headingd/daemon/doorbell.hpp"
+
 namespace headingd::daemon {
 
 struct RingStats {
@@ -26,6 +28,8 @@ class SampleRing {
   SampleRing& operator=(const SampleRing&) = delete;
 
   const std::string& name() const { return name_; }
+  // Rung after each push (null: none). Set before the producer starts.
+  void setDoorbell(Doorbell* doorbell) { doorbell_ = doorbell; }
   std::size_t capacity() const { return capacity_; }
 
   // Producer thread only. False when the ring was full and the entry was dropped.
@@ -38,6 +42,7 @@ class SampleRing {
     // Only this thread writes high_water_, so a plain load-compare-store is enough.
     const std::size_t waiting = capacity_ - queue_.write_available();
     if (waiting > high_water_.load(std::memory_order_relaxed)) high_water_.store(waiting, std::memory_order_relaxed);
+    if (doorbell_ != nullptr) doorbell_->ring();
     return true;
   }
 
@@ -66,6 +71,7 @@ class SampleRing {
   }
 
  private:
+  Doorbell* doorbell_ = nullptr;
   std::string name_;
   std::size_t capacity_;
   boost::lockfree::spsc_queue<Entry> queue_;

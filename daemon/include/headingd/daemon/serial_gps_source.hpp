@@ -27,6 +27,7 @@ class SerialGpsSource final : public AsioSource<nmea::SerialGpsCounters> {
   ~SerialGpsSource() override;
 
   const char* kind() const override { return "gps_serial"; }
+  bool readsAtRealTimePace() const override { return true; }
   void report(SourceReport& out) const override;
 
  private:

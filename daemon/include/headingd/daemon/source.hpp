@@ -7,6 +7,7 @@
 // daemon made for it, push from the callback (SampleRing::push never blocks), and describe
 // its state and counters in report().
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,6 +53,23 @@ class Source {
   // True while a file source still has data to play. The daemon stops for a source that
   // wants to exit only once no file source is playing any more.
   virtual bool playing() const { return false; }
+
+  // True when the source's threads read at real-time pace: a device, or a file played at
+  // speed 1 or slower. Those threads run at [realtime] driver_fifo_priority (realtime.hpp); a
+  // file played faster decodes as fast as it can and keeps normal scheduling, so that it
+  // cannot hold a CPU from the rest of the machine.
+  virtual bool readsAtRealTimePace() const = 0;
+  // Set before start(): called first on each thread the source starts (the daemon's
+  // scheduling for driver threads).
+  void setThreadStartHook(std::function<void()> hook) { thread_start_hook_ = std::move(hook); }
+
+ protected:
+  void runThreadStartHook() const {
+    if (thread_start_hook_) thread_start_hook_();
+  }
+
+ private:
+  std::function<void()> thread_start_hook_;
 };
 
 }  // namespace headingd::daemon

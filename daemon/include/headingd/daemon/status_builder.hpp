@@ -15,6 +15,7 @@
 #include "headingd/daemon/latency_histogram.hpp"
 #include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
+#include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/sample_ring.hpp"
@@ -79,6 +80,8 @@ void fillSourceStatus(status_t& m, const std::vector<Source*>& sources, std::vec
 // Capacity, high-water mark, pushes and drops of each ring, the IMU rings first.
 void fillRingStatus(status_t& m, const std::vector<SampleRing<ImuRingEntry>*>& imu_rings,
                     const std::vector<SampleRing<GpsRingEntry>*>& gps_rings);
+// The scheduling policies the estimator and driver threads got and whether memory is locked.
+void fillRealtimeStatus(status_t& m, const RealtimeReport& realtime);
 // Percentiles of the status period's tick timing, in microseconds.
 void fillTickTiming(status_t& m, const TickTiming& window);
 // Messages per second over the status period.

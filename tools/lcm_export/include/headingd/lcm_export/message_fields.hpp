@@ -78,7 +78,8 @@ void describeFields(const headingd::status_t& m, W& w) {
   HEADINGD_LCM_FIELDS(utime, state, reason, uptime_us, num_sources, sources, num_rings, rings, rate_hz, ticks,
                       deadline_misses, tick_jitter_p50_us, tick_jitter_p99_us, tick_jitter_max_us, processing_p50_us,
                       processing_p99_us, processing_max_us, sample_age_p50_us, sample_age_p99_us, heading_rate_hz,
-                      imu_rate_hz, gps_rate_hz, publish_errors, num_counters, counters);
+                      imu_rate_hz, gps_rate_hz, publish_errors, estimator_policy, estimator_priority, driver_policy,
+                      driver_priority, memory_locked, num_counters, counters);
 }
 
 }  // namespace headingd::lcm_export
