@@ -26,6 +26,9 @@ class GpsdGpsSource final : public AsioSource<gpsd::GpsdCounters> {
 
   const char* kind() const override { return "gps_gpsd"; }
   void report(SourceReport& out) const override;
+  // gpsd's reports come as the receiver sends them, and their arrival time places the epoch:
+  // a driver thread, as the serial source's.
+  bool readsAtRealTimePace() const override { return true; }
 
  private:
   void onStart() override { client_->start(); }
