@@ -18,6 +18,7 @@ packages=(
   libboost-dev         # Asio, Lockfree
   libgeographiclib-dev # World Magnetic Model, geodesy
   libceres-dev         # maximum-likelihood calibration (automatic differentiation)
+  ccache               # compiled objects kept: rebuilds, and the selfcontained test's fresh clone
   gzip                 # the demo recording and BROAD trials are gzip'd
   time                 # /usr/bin/time: peak RSS in tools/scripts/bench-replay.sh
   liblcm-dev           # LCM messages (daemon)

@@ -15,18 +15,16 @@ namespace {
 // kReady: the handler never sees a path being written.
 enum SlotState : int { kFree = 0, kClaimed = 1, kReady = 2 };
 
-struct Slot {
-  std::atomic<int> state{kFree};
-  char path[PATH_MAX];
-};
-
-Slot g_slots[kMaxTemporaryFiles];
+// Constant-initialised, in zeroed memory: a program that never writes an output file pays
+// nothing for them at start-up (no initialiser touching 256 KiB of pages).
+constinit std::atomic<int> g_states[kMaxTemporaryFiles] = {};
+char g_paths[kMaxTemporaryFiles][PATH_MAX];
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
 
 // Only async-signal-safe calls: unlink, sigaction, raise.
 void removeAndDie(int signal_number) {
-  for (Slot& slot : g_slots) {
-    if (slot.state.load(std::memory_order_acquire) == kReady) ::unlink(slot.path);
+  for (int i = 0; i < kMaxTemporaryFiles; ++i) {
+    if (g_states[i].load(std::memory_order_acquire) == kReady) ::unlink(g_paths[i]);
   }
   struct sigaction default_action {};
   default_action.sa_handler = SIG_DFL;
@@ -57,9 +55,9 @@ int removeOnFatalSignal(const char* path) {
   installHandlersOnce();
   for (int i = 0; i < kMaxTemporaryFiles; ++i) {
     int expected = kFree;
-    if (g_slots[i].state.compare_exchange_strong(expected, kClaimed, std::memory_order_acquire)) {
-      std::memcpy(g_slots[i].path, path, length + 1);
-      g_slots[i].state.store(kReady, std::memory_order_release);
+    if (g_states[i].compare_exchange_strong(expected, kClaimed, std::memory_order_acquire)) {
+      std::memcpy(g_paths[i], path, length + 1);
+      g_states[i].store(kReady, std::memory_order_release);
       return i;
     }
   }
@@ -67,7 +65,7 @@ int removeOnFatalSignal(const char* path) {
 }
 
 void forgetOnFatalSignal(int slot) {
-  if (slot >= 0 && slot < kMaxTemporaryFiles) g_slots[slot].state.store(kFree, std::memory_order_release);
+  if (slot >= 0 && slot < kMaxTemporaryFiles) g_states[slot].store(kFree, std::memory_order_release);
 }
 
 }  // namespace headingd::files

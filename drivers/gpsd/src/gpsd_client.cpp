@@ -53,7 +53,7 @@ GpsdClient::GpsdClient(boost::asio::io_context& io, GpsdConfig config, EpochHand
       socket_(io),
       reconnect_timer_(io),
       idle_timer_(io),
-      backoff_(toNs(config_.reopen_backoff_initial_s)) {}
+      backoff_(config_.reopen_backoff_initial_s, config_.reopen_backoff_max_s) {}
 
 GpsdClient::~GpsdClient() {
   alive_.reset();
@@ -63,7 +63,7 @@ GpsdClient::~GpsdClient() {
 void GpsdClient::start() {
   if (running_) return;
   running_ = true;
-  backoff_ = toNs(config_.reopen_backoff_initial_s);
+  backoff_.reset();
   scheduleConnect(std::chrono::nanoseconds(0));
 }
 
@@ -131,14 +131,13 @@ void GpsdClient::connect() {
 void GpsdClient::failConnect(const std::string& why) {
   ++counters_.connect_failures;
   setError(GpsdState::kWaiting, why + "; retrying");
-  scheduleConnect(backoff_);
-  backoff_ = std::min(backoff_ * 2, toNs(config_.reopen_backoff_max_s));
+  scheduleConnect(backoff_.afterFailure());
 }
 
 void GpsdClient::onConnected() {
   ++counters_.connects;
   counters_.state = GpsdState::kConnected;
-  backoff_ = toNs(config_.reopen_backoff_initial_s);
+  backoff_.reset();
   spdlog::info("gps: connected to {}, watching", where());
   boost::asio::async_write(socket_, boost::asio::buffer(kWatchCommand.data(), kWatchCommand.size()),
                            [this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec, std::size_t) {
@@ -227,8 +226,7 @@ void GpsdClient::lose(const std::string& why) {
   closeSocket();
   endStream();
   setError(GpsdState::kWaiting, where() + ": " + why + "; reconnecting");
-  backoff_ = toNs(config_.reopen_backoff_initial_s);
-  scheduleConnect(backoff_);
+  scheduleConnect(backoff_.reset());
 }
 
 void GpsdClient::endStream() {

@@ -47,7 +47,7 @@ SerialGpsReader::SerialGpsReader(boost::asio::io_context& io, SerialGpsConfig co
       reopen_timer_(io),
       idle_timer_(io),
       path_timer_(io),
-      backoff_(toNs(config_.reopen_backoff_initial_s)) {}
+      backoff_(config_.reopen_backoff_initial_s, config_.reopen_backoff_max_s) {}
 
 SerialGpsReader::~SerialGpsReader() {
   alive_.reset();
@@ -57,7 +57,7 @@ SerialGpsReader::~SerialGpsReader() {
 void SerialGpsReader::start() {
   if (running_) return;
   running_ = true;
-  backoff_ = toNs(config_.reopen_backoff_initial_s);
+  backoff_.reset();
   scheduleOpen(std::chrono::nanoseconds(0));
 }
 
@@ -105,8 +105,7 @@ void SerialGpsReader::attemptOpen() {
     } else {
       setError(failed->device_missing ? SerialGpsState::kWaitingForDevice : SerialGpsState::kError, failed->message);
     }
-    scheduleOpen(backoff_);
-    backoff_ = std::min(backoff_ * 2, toNs(config_.reopen_backoff_max_s));
+    scheduleOpen(backoff_.afterFailure());
     return;
   }
   const int fd = std::get<OpenedSerialDevice>(result).fd;
@@ -118,14 +117,13 @@ void SerialGpsReader::attemptOpen() {
     releaseSerialDevice(fd);
     ::close(fd);
     setError(SerialGpsState::kError, config_.device + ": " + ec.message());
-    scheduleOpen(backoff_);
-    backoff_ = std::min(backoff_ * 2, toNs(config_.reopen_backoff_max_s));
+    scheduleOpen(backoff_.afterFailure());
     return;
   }
   if (ever_opened_) ++counters_.reopens;
   ever_opened_ = true;
   counters_.state = SerialGpsState::kOpen;
-  backoff_ = toNs(config_.reopen_backoff_initial_s);
+  backoff_.reset();
   spdlog::info("gps: {} open at {} baud", config_.device, config_.baud);
   startRead();
   startPathCheck();
@@ -217,8 +215,7 @@ void SerialGpsReader::lose(const std::string& why) {
   closePort();
   endStream();
   setError(SerialGpsState::kWaitingForDevice, config_.device + ": " + why + "; reopening");
-  backoff_ = toNs(config_.reopen_backoff_initial_s);
-  scheduleOpen(backoff_);
+  scheduleOpen(backoff_.reset());
 }
 
 void SerialGpsReader::endStream() {

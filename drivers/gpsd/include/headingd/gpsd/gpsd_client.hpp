@@ -24,6 +24,7 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "headingd/nmea/reconnect_delay.hpp"
 #include "headingd/gpsd/gpsd_config.hpp"
 #include "headingd/gpsd/gpsd_epoch_merger.hpp"
 #include "headingd/gpsd/json_line_framer.hpp"
@@ -98,7 +99,7 @@ class GpsdClient {
   boost::asio::steady_timer reconnect_timer_;
   boost::asio::steady_timer idle_timer_;
   std::array<std::uint8_t, 4096> buffer_{};
-  std::chrono::nanoseconds backoff_;
+  nmea::ReconnectDelay backoff_;
   std::int64_t last_receive_ns_ = 0;
   bool idle_timer_armed_ = false;
   bool running_ = false;

@@ -27,6 +27,7 @@
 #include <boost/asio/serial_port.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "headingd/nmea/reconnect_delay.hpp"
 #include "headingd/nmea/counters.hpp"
 #include "headingd/nmea/serial_epoch_assembler.hpp"
 #include "headingd/nmea/serial_gps_config.hpp"
@@ -96,7 +97,7 @@ class SerialGpsReader {
   boost::asio::steady_timer idle_timer_;
   boost::asio::steady_timer path_timer_;
   std::array<std::uint8_t, 512> buffer_{};
-  std::chrono::nanoseconds backoff_;
+  ReconnectDelay backoff_;
   std::int64_t last_receive_ns_ = 0;
   bool idle_timer_armed_ = false;
   bool ever_opened_ = false;
