@@ -134,11 +134,17 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
   std::this_thread::sleep_for(2s);
   const headingd::status_t before = nextStatus();
   printCanCounters("before flood", before);
-  const double flood_start = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  // The flood's window on the wall clock, which HEADING's utime (publish time) is on: the count
+  // below is of what the daemon published then, not of when this process, starved by the flood
+  // on the emulated CPUs, got round to receiving it.
+  const auto wallUs = [] {
+    return std::chrono::duration<double, std::micro>(std::chrono::system_clock::now().time_since_epoch()).count();
+  };
+  const double flood_start_us = wallUs();
   bus.setFlood(true);
   std::this_thread::sleep_for(3s);
   bus.setFlood(false);
-  const double flood_end = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  const double flood_end_us = wallUs();
   const headingd::status_t during = nextStatus();
   printCanCounters("flood", during);
   std::this_thread::sleep_for(2s);
@@ -169,8 +175,11 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
   // The estimator's rate: during the flood each period published HEADING or was counted as a
   // missed deadline, and the flood cost no more ticks than the emulated CPU misses anyway.
   std::size_t heading_in_flood = 0;
-  for (const auto& h : lcm_->heading()) heading_in_flood += h.receive_s >= flood_start && h.receive_s < flood_end;
-  const double flood_s = flood_end - flood_start;
+  for (const auto& h : lcm_->heading()) {
+    const auto utime = static_cast<double>(h.message.utime);
+    heading_in_flood += utime >= flood_start_us && utime < flood_end_us;
+  }
+  const double flood_s = (flood_end_us - flood_start_us) * 1e-6;
   const auto misses = static_cast<double>(during.deadline_misses - before.deadline_misses);
   std::fprintf(stderr, "flood %.2f s: %zu HEADING, %.0f missed deadlines (rate %.0f Hz), HEADING rate on STATUS %.1f Hz before, %.1f Hz in the flood\n",
                flood_s, heading_in_flood, misses, after.rate_hz, before.heading_rate_hz, during.heading_rate_hz);

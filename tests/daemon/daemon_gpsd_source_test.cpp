@@ -17,6 +17,7 @@
 
 #include "daemon_test_support.hpp"
 #include "lcm_collector.hpp"
+#include "status_lookup.hpp"
 #include "pty_fixture.hpp"
 
 namespace headingd::daemon {
@@ -26,25 +27,13 @@ using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::LcmCollector;
 using test::lcmUrl;
+using test::counter;
+using test::findSource;
 using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
 constexpr const char* kCapture = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
 constexpr double kDeg = 180.0 / std::numbers::pi;
-
-const headingd::source_status_t* findSource(const headingd::status_t& s, const std::string& kind) {
-  for (const auto& src : s.sources) {
-    if (src.kind == kind) return &src;
-  }
-  return nullptr;
-}
-
-std::int64_t counter(const headingd::source_status_t& s, const std::string& name) {
-  for (const auto& c : s.counters) {
-    if (c.name == name) return c.value;
-  }
-  return -1;
-}
 
 std::optional<headingd::source_status_t> lastSource(const LcmCollector& lcm, const std::string& kind) {
   const auto s = lcm.status();

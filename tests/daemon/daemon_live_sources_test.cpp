@@ -14,6 +14,7 @@
 
 #include "daemon_test_support.hpp"
 #include "lcm_collector.hpp"
+#include "status_lookup.hpp"
 #include "port_holder.hpp"
 #include "pty_fixture.hpp"
 #include "test_data.hpp"
@@ -25,24 +26,12 @@ using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::LcmCollector;
 using test::lcmUrl;
+using test::counter;
+using test::findSource;
 using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
 constexpr double kDeg = 180.0 / std::numbers::pi;
-
-const headingd::source_status_t* findSource(const headingd::status_t& s, const std::string& kind) {
-  for (const auto& src : s.sources) {
-    if (src.kind == kind) return &src;
-  }
-  return nullptr;
-}
-
-std::int64_t counter(const headingd::source_status_t& s, const std::string& name) {
-  for (const auto& c : s.counters) {
-    if (c.name == name) return c.value;
-  }
-  return -1;
-}
 
 // mt3339.log: a MediaTek receiver in Oregon (44.07 N, 121.31 W), 30 one-second epochs with
 // RMC and GGA, 2015-04-13.

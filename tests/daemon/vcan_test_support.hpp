@@ -16,6 +16,7 @@
 
 #include "daemon_test_support.hpp"
 #include "headingd/source_status_t.hpp"
+#include "status_lookup.hpp"
 
 namespace headingd::daemon::test {
 
@@ -63,14 +64,6 @@ inline std::vector<std::string> nmeaEpochs(const std::string& nmea_path, std::si
     if (!epochs.empty()) epochs.back() += line + "\n";
   }
   return epochs;
-}
-
-// A source's counter on STATUS by name, -1 when it has none.
-inline std::int64_t counter(const headingd::source_status_t& s, const std::string& name) {
-  for (const auto& c : s.counters) {
-    if (c.name == name) return c.value;
-  }
-  return -1;
 }
 
 // After canplayer has played the log: waits for the last samples and one more STATUS, stops

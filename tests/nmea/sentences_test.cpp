@@ -189,6 +189,17 @@ TEST(Sentences, Zda) {
   EXPECT_FALSE(empty.year);
 }
 
+// A zone of 1e50 hours overflowed the int conversion (found by fuzzing): beyond -14..+14 the
+// zone is a bad field, counted, and the time and date are kept.
+TEST(Sentences, ZdaZoneBeyondFourteenHoursIsNotUsedAndCounted) {
+  const auto d = decodeOk("GPZDA,160012.71,11,03,2004,7.77778e+50,00");
+  const auto& z = std::get<Zda>(d.data);
+  EXPECT_FALSE(z.zone_hours);
+  EXPECT_EQ(*z.year, 2004);
+  EXPECT_EQ(d.invalid_fields, 1);
+  EXPECT_EQ(*std::get<Zda>(decodeOk("GPZDA,160012.71,11,03,2004,+14,00").data).zone_hours, 14);
+}
+
 TEST(Sentences, Gll) {
   const auto g = decodeAs<Gll>("GPGLL,4916.45,N,12311.12,W,225444,A,A");
   EXPECT_NEAR(g.position->lat_deg, 49.274166667, 1e-9);

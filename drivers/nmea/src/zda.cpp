@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include "field_reader.hpp"
 
 namespace headingd::nmea {
@@ -19,8 +21,15 @@ std::optional<Zda> decodeZda(const FieldList& fields, int& invalid_fields) {
     z.month.reset();
     z.year.reset();
   }
-  // The local zone may be signed ("-05").
-  if (const auto h = f.decimal(5)) z.zone_hours = static_cast<int>(*h);
+  // The local zone may be signed ("-05"); zones run from -12 to +14 hours. Anything beyond is
+  // a bad field (and must not reach the int conversion: 1e50 does not fit; found by fuzzing).
+  if (const auto h = f.decimal(5)) {
+    if (std::abs(*h) <= 14.0) {
+      z.zone_hours = static_cast<int>(*h);
+    } else {
+      f.countInvalid();
+    }
+  }
   z.zone_minutes = f.integer(6);
   return z;
 }
