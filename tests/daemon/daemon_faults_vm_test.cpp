@@ -262,7 +262,12 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
   EXPECT_EQ(sample_time_went_back, 0u);
   const auto first_fresh = std::find_if(heading.begin(), heading.end(), [](const auto& h) { return h.message.validity == 1; });
   ASSERT_NE(first_fresh, heading.end());
-  const auto& last = heading.back();
+  // The last sample's first estimate, not the last message: after the bus stops the daemon
+  // goes on publishing the last estimate (stale) while the receive time runs on.
+  const auto last_it = std::find_if(heading.begin(), heading.end(), [&](const auto& h) {
+    return h.message.sample_utime == heading.back().message.sample_utime;
+  });
+  const auto& last = *last_it;
   const double sample_span_s = static_cast<double>(last.message.sample_utime - first_fresh->message.sample_utime) * 1e-6;
   EXPECT_NEAR(sample_span_s, last.receive_s - first_fresh->receive_s, 1.0);
   // The estimator saw no time going back, no jump and no duplicate; the CAN source saw both steps.
