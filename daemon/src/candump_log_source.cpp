@@ -1,5 +1,6 @@
 #include "headingd/daemon/candump_log_source.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <spdlog/spdlog.h>
 #include <sstream>
@@ -39,6 +40,7 @@ std::unique_ptr<Source> createCandumpLogSource(const SourceConfig& config, Sourc
   spdlog::info("source candump_log: {} ({} frames), decoded by {} (DBC {})", c.path, source->frameCount(),
                c.can_config_path, c.can.dbc_path);
   context.logStartsAt(source->firstLogNs());
+  context.logEndsAt(source->lastLogNs(), source->sampleStepNs());
   return source;
 }
 
@@ -97,6 +99,17 @@ void CandumpLogSource::placeFrames(const std::string& path, const std::vector<ca
     frames_.push_back(all[i]);
     play_ns_.push_back(times.play_ns[i]);
   }
+  std::vector<std::int64_t> steps;
+  std::optional<std::int64_t> previous;
+  for (std::size_t i = 0; i < frames_.size() && steps.size() < 1000; ++i) {
+    if (frames_[i].id != frames_.front().id || frames_[i].extended != frames_.front().extended) continue;
+    if (previous && play_ns_[i] > *previous) steps.push_back(play_ns_[i] - *previous);
+    previous = play_ns_[i];
+  }
+  if (!steps.empty()) {
+    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+    sample_step_ns_ = steps[steps.size() / 2];
+  }
   auto seconds = [](std::int64_t ns) { return static_cast<double>(ns) * 1e-9; };
   if (times.outlier_frames > 0) {
     const auto at = static_cast<std::size_t>(times.first_outlier_index);
@@ -120,6 +133,11 @@ std::optional<std::int64_t> CandumpLogSource::firstLogNs() const {
   return play_ns_.front();
 }
 
+std::optional<std::int64_t> CandumpLogSource::lastLogNs() const {
+  if (frames_.empty()) return std::nullopt;
+  return play_ns_.back();
+}
+
 void CandumpLogSource::pushSamples(const can::AssembledSamples& samples) {
   for (int i = 0; i < samples.count; ++i) {
     ImuRingEntry e;
@@ -135,23 +153,37 @@ void CandumpLogSource::finish() {
   finished_.store(true);
 }
 
+bool CandumpLogSource::startNextLoop() {
+  if (at_end_ != AtEnd::kLoop || clock_->loop_ns <= 0 || frames_.empty()) return false;
+  // The log's epoch counters start again (its last and first may even be equal).
+  pushSamples(assembler_->restartStream());
+  loop_offset_ns_ += clock_->loop_ns;
+  next_frame_ = 0;
+  loops_played_.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
 void CandumpLogSource::playDue() {
   const std::int64_t now = monotonicNs();
-  while (next_frame_ < frames_.size() && clock_->dueMonoNs(play_ns_[next_frame_]) <= now) {
-    const can::CanFrame& frame = frames_[next_frame_++];
-    // The flush on the log's own time: what a receiver with perfect timing would have seen.
-    pushSamples(can::flushEpoch(*assembler_, can_config_, flush_age_ns_, frame.kernel_time_ns));
-    pushSamples(assembler_->push(frame));
-    frames_played_.fetch_add(1, std::memory_order_relaxed);
-  }
-  if (next_frame_ == frames_.size()) {
-    finish();
-    return;
+  for (;;) {
+    while (next_frame_ < frames_.size() && clock_->dueMonoNs(play_ns_[next_frame_] + loop_offset_ns_) <= now) {
+      can::CanFrame frame = frames_[next_frame_++];
+      frame.kernel_time_ns += loop_offset_ns_;
+      // The flush on the log's own time: what a receiver with perfect timing would have seen.
+      pushSamples(can::flushEpoch(*assembler_, can_config_, flush_age_ns_, frame.kernel_time_ns));
+      pushSamples(assembler_->push(frame));
+      frames_played_.fetch_add(1, std::memory_order_relaxed);
+    }
+    if (next_frame_ < frames_.size()) break;
+    if (!startNextLoop()) {
+      finish();
+      return;
+    }
   }
   takeSnapshot();
   // steady_clock is CLOCK_MONOTONIC on Linux: absolute deadlines, no drift.
   timer_.expires_at(std::chrono::steady_clock::time_point(
-      std::chrono::nanoseconds(clock_->dueMonoNs(play_ns_[next_frame_]))));
+      std::chrono::nanoseconds(clock_->dueMonoNs(play_ns_[next_frame_] + loop_offset_ns_))));
   timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) playDue();
   });
@@ -171,6 +203,7 @@ void CandumpLogSource::report(SourceReport& out) const {
   std::size_t i = 0;
   out.set(i++, "frames_in_log", reader_counters_.frames);
   out.set(i++, "frames_played", frames_played_.load(std::memory_order_relaxed));
+  out.set(i++, "loops_played", loops_played_.load(std::memory_order_relaxed));
   out.set(i++, "log_bad_lines", reader_counters_.bad_lines);
   out.set(i++, "log_end_missing", end_missing_ ? 1u : 0u);
   out.set(i++, "time_outlier_frames", time_outlier_frames_);

@@ -47,15 +47,19 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   makeRecorder();
   SourceContext context{config_.imu_ring_capacity, config_.gps_ring_capacity, imu_rings_, gps_rings_,
                         configs.playback, &playback_clock_, 0, std::nullopt,
-                        recorder_ != nullptr ? &source_sinks_ : nullptr};
+                        recorder_ != nullptr ? &source_sinks_ : nullptr, std::nullopt, std::nullopt};
   sources_ = makeSources(configs, context);
   // The log sources play on one clock, which starts at the earliest first timestamp of the
   // logs (playback_clock.hpp).
   playback_clock_.speed = configs.playback.speed;
   playback_clock_.log_t0_ns = context.log_t0_ns.value_or(0);
+  if (configs.playback.at_end == AtEnd::kLoop) playback_clock_.loop_ns = context.loopLengthNs();
   if (usesLogClock(configs)) {
-    spdlog::info("log playback: speed {}x, start delay {} s, at end: {}", configs.playback.speed,
-                 configs.playback.start_delay_s, atEndName(configs.playback.at_end));
+    spdlog::info("log playback: speed {}x, start delay {} s, at end: {}{}", configs.playback.speed,
+                 configs.playback.start_delay_s, atEndName(configs.playback.at_end),
+                 playback_clock_.loop_ns > 0
+                     ? fmt::format(" (a loop is {:.3f} s of log time)", static_cast<double>(playback_clock_.loop_ns) * 1e-9)
+                     : std::string());
   }
   if (config_.nmea_out.enabled) {
     nmea_out_ = std::make_unique<NmeaOutServer>(config_.nmea_out, config_.log.repeat_burst, config_.log.repeat_interval_s);

@@ -1,5 +1,6 @@
 #include "headingd/daemon/nmea_log_source.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <spdlog/spdlog.h>
@@ -41,6 +42,7 @@ std::unique_ptr<Source> createNmeaLogSource(const SourceConfig& config, SourceCo
                                                 context.source_index, context.addGpsRing(c.table));
   spdlog::info("source nmea_log: {} ({} epochs)", c.path, source->epochCount());
   context.logStartsAt(source->firstLogNs());
+  context.logEndsAt(source->lastLogNs(), source->epochStepNs());
   return source;
 }
 
@@ -83,12 +85,20 @@ NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config
       previous_tod = u.fix.time_of_day_ns;
     }
   }
+  // The first and last epoch times, and the usual step between epochs, as the player will
+  // place them (one NmeaLogTime through the whole log: days roll over as they will).
   NmeaLogTime log_time(offset_ns_, first_day_ns_);
+  std::vector<std::int64_t> steps;
   for (const nmea::FixUpdate& u : updates) {
-    if (const std::optional<std::int64_t> t = log_time.of(u.fix)) {
-      first_log_ns_ = t;
-      break;
-    }
+    const std::optional<std::int64_t> t = log_time.of(u.fix);
+    if (!t) continue;
+    if (!first_log_ns_) first_log_ns_ = t;
+    if (last_log_ns_ && *t > *last_log_ns_ && steps.size() < 1000) steps.push_back(*t - *last_log_ns_);
+    if (!last_log_ns_ || *t > *last_log_ns_) last_log_ns_ = t;
+  }
+  if (!steps.empty()) {
+    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+    epoch_step_ns_ = steps[steps.size() / 2];
   }
 }
 
@@ -100,8 +110,11 @@ void NmeaLogSource::onFix(const nmea::Fix& fix, std::int64_t receive_ns) {
     // No time of fix: placed where the log clock stands now.
     untimed_.fetch_add(1, std::memory_order_relaxed);
     t = clock_->logNsAt(receive_ns);
+  } else {
+    *t += loop_offset_ns_;
   }
-  dates_not_believed_.store(log_time_->datesNotBelieved(), std::memory_order_relaxed);
+  dates_not_believed_.store(dates_not_believed_in_past_loops_ + log_time_->datesNotBelieved(),
+                            std::memory_order_relaxed);
   GpsRingEntry e;
   e.observation = nmea::gpsObservationFromFix(fix, *t);
   e.arrival_mono_ns = receive_ns;
@@ -109,15 +122,26 @@ void NmeaLogSource::onFix(const nmea::Fix& fix, std::int64_t receive_ns) {
 }
 
 void NmeaLogSource::onFinished() {
+  if (at_end_ == AtEnd::kLoop && clock_->loop_ns > 0 && first_log_ns_) {
+    // Called from the player's last group: the next loop starts from the io thread's queue.
+    dates_not_believed_in_past_loops_ += log_time_->datesNotBelieved();
+    loop_offset_ns_ += clock_->loop_ns;
+    loops_played_.fetch_add(1, std::memory_order_relaxed);
+    startPlayerOnTime();
+    return;
+  }
   stopTicks();
   takeSnapshot();
   finished_.store(true);
 }
 
-void NmeaLogSource::onStart() {
-  log_time_.emplace(offset_ns_, first_day_ns_);
+void NmeaLogSource::onStart() { startPlayerOnTime(); }
+
+void NmeaLogSource::startPlayerOnTime() {
+  log_time_.emplace(offset_ns_, first_day_ns_);  // each loop places its epochs afresh
   // The player feeds its first group at once: start it when the log clock reaches it.
-  const std::int64_t due = first_log_ns_ ? clock_->dueMonoNs(*first_log_ns_) : clock_->start_mono_ns;
+  const std::int64_t due =
+      first_log_ns_ ? clock_->dueMonoNs(*first_log_ns_ + loop_offset_ns_) : clock_->start_mono_ns;
   start_timer_.expires_at(steadyAt(due));
   start_timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) player_->start();
@@ -138,6 +162,7 @@ void NmeaLogSource::report(SourceReport& out) const {
     out.set(i++, "dates_not_believed", dates_not_believed_.load(std::memory_order_relaxed));
     out.set(i++, "late_sentences", c.epochs.late_sentences);
     out.set(i++, "groups_played", c.groups_played);
+    out.set(i++, "loops_played", loops_played_.load(std::memory_order_relaxed));
     out.set(i++, "backward_steps", c.backward_steps);
     nmea::forEachCounter(c.parser, [&](const char* name, std::uint64_t v) { out.set(i++, "nmea_", name, v); });
   });

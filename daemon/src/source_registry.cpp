@@ -43,7 +43,8 @@ PlaybackConfig parsePlaybackTable(const toml::table& doc, const std::string& sou
   core::TomlTableReader playback(core::tableOf(doc, "playback", source), source, "playback");
   p.speed = playback.number("speed", p.speed, 0.01, 1000.0, "x real time");
   p.start_delay_s = playback.number("start_delay_s", p.start_delay_s, 0.0, 3600.0, "s");
-  p.at_end = playback.choice("at_end", "stay", {"stay", "exit"}) == "exit" ? AtEnd::kExit : AtEnd::kStay;
+  const std::string at_end = playback.choice("at_end", "stay", {"stay", "exit", "loop"});
+  p.at_end = at_end == "exit" ? AtEnd::kExit : at_end == "loop" ? AtEnd::kLoop : AtEnd::kStay;
   playback.rejectUnknownKeys();
   return p;
 }
@@ -116,6 +117,13 @@ SourceConfigs parseSourceTables(const toml::table& doc, const std::string& sourc
     configs.tables.push_back(std::move(config));
   }
   checkTimeAxes(configs, doc, source);
+  // A recording is a run to be replayed as it ran (bit for bit, daemon/README.md): once.
+  const auto* recording = configs.find<RecordingSourceConfig>();
+  if (configs.playback.at_end == AtEnd::kLoop && recording != nullptr && recording->enabled) {
+    core::TomlTableReader(core::tableOf(doc, "playback", source), source, "playback")
+        .fail("at_end", "\"loop\" plays [candump_log] and [nmea_log] again and again; a [recording] is replayed "
+                        "once, as it ran: use \"stay\" or \"exit\"");
+  }
   return configs;
 }
 
@@ -153,6 +161,19 @@ SampleRing<GpsRingEntry>* SourceContext::addGpsRing(const std::string& source_na
 
 void SourceContext::logStartsAt(std::optional<std::int64_t> log_ns) {
   if (log_ns && (!log_t0_ns || *log_ns < *log_t0_ns)) log_t0_ns = log_ns;
+}
+
+void SourceContext::logEndsAt(std::optional<std::int64_t> last_log_ns, std::optional<std::int64_t> sample_step_ns) {
+  if (last_log_ns && (!log_end_ns || *last_log_ns > *log_end_ns)) log_end_ns = last_log_ns;
+  if (sample_step_ns && *sample_step_ns > 0 && (!log_step_ns || *sample_step_ns < *log_step_ns)) {
+    log_step_ns = sample_step_ns;
+  }
+}
+
+std::int64_t SourceContext::loopLengthNs() const {
+  if (!log_t0_ns || !log_end_ns) return 0;
+  // A log of one sample (no step) still moves on: by a millisecond a loop.
+  return std::max<std::int64_t>(*log_end_ns - *log_t0_ns, 0) + log_step_ns.value_or(1'000'000);
 }
 
 }  // namespace headingd::daemon

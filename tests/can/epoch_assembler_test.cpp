@@ -179,6 +179,31 @@ TEST(EpochAssembler, CounterGapsAndDuplicates) {
   EXPECT_EQ(a.counters().duplicate_frames, 1u);
 }
 
+// A log played again (the daemon's [playback] at_end = "loop"): its first epoch may carry the
+// counter of the last one (60,001 epochs of a 4-bit counter end on 0, as they began). After
+// restartStream it is a new epoch, not three repeated frames.
+TEST(EpochAssembler, RestartedStreamIsNotTakenForRepeatedFrames) {
+  Fixture fx("can-headingd.toml");
+  for (const bool restart : {false, true}) {
+    EpochAssembler a(fx.codec(), fx.settings());
+    Collector c;
+    for (int k : {0, 1, 2}) {
+      for (const auto& f : fx.epoch(k)) c.take(a.push(f));
+    }
+    if (restart) c.take(a.restartStream());
+    for (auto f : fx.epoch(2)) {  // counter 2 again, a second later
+      f.kernel_time_ns += 1'000'000'000;
+      c.take(a.push(f));
+    }
+    c.take(a.finish());
+    EXPECT_EQ(c.samples.size(), restart ? 4u : 3u) << "restart " << restart;
+    EXPECT_EQ(a.counters().duplicate_frames, restart ? 0u : 3u) << "restart " << restart;
+    if (restart) {
+      EXPECT_EQ(c.samples.back().t_ns, sampleAt(2).t_ns + 1'000'000'000);
+    }
+  }
+}
+
 // The assembler's counters after every frame of the epochs `order`, in that order.
 AssemblerCounters countersAfter(const std::vector<int>& order) {
   Fixture fx("can-headingd.toml");

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak: runs headingd for MINUTES on the demo walk played in a loop at SPEED x real time
+# Soak: runs headingd for MINUTES on the demo capture played in a loop at SPEED x real time
 # (default 30 min at 20x: 10 simulated hours) and checks that nothing accumulates. Every
 # SOAK_SAMPLE_S seconds (default 10) it samples the daemon's resident memory (VmRSS of
 # /proc/PID/status); lcm-logger records every STATUS message (rings' high-water marks and
@@ -12,11 +12,10 @@
 #     the warm-up: those drift (none expected).
 # Exit status 0 when all three hold, 1 otherwise, 2 on bad usage or a missing tool.
 #
-# The demo walk is the simulator's urban-walk scenario (seed 1, 2026-06-01), the same
-# simulation config/demo's capture was encoded from (make-demo-capture.sh), written again by
-# headingd-sim as an IMU CSV and NMEA and played by [imu_csv] with at_end = "loop" (the log
-# sources [candump_log] and [nmea_log] play a capture once; [imu_csv] loops it, each loop
-# later on the time axis by the walk's length).
+# The demo capture (config/demo: the candump log of the CAN IMU frames and the NMEA log) is
+# played as the demo plays it, by [candump_log] and [nmea_log] through the CAN decoder, the
+# epoch assembler and the NMEA player, with [playback] at_end = "loop": each loop later on
+# the log axis by the capture's length plus one sample period.
 #
 # usage: tools/scripts/soak.sh [MINUTES] [SPEED]        (defaults 30 and 20)
 # environment: SOAK_BUILD (build tree, default build), SOAK_OUT (folder for soak.csv, the
@@ -39,9 +38,8 @@ out=${SOAK_OUT:-$(mktemp -d "${TMPDIR:-/tmp}/headingd-soak.XXXXXX")}
 mkdir -p "$out"
 
 headingd=$build/daemon/headingd
-sim=$build/tools/sim/headingd-sim
 export_tool=$build/tools/lcm_export/headingd-lcm-export
-for tool in "$headingd" "$sim" "$export_tool"; do
+for tool in "$headingd" "$export_tool"; do
   [[ -x "$tool" ]] || { echo "soak: $tool is not built (cmake --build $build --target $(basename "$tool"))" >&2; exit 2; }
 done
 command -v lcm-logger >/dev/null || { echo "soak: lcm-logger missing (apt-get install liblcm-bin)" >&2; exit 2; }
@@ -55,10 +53,6 @@ cleanup() {
 }
 trap cleanup EXIT
 
-echo "soak: writing the demo walk (headingd-sim --scenario urban-walk --seed 1)" >&2
-"$sim" --scenario urban-walk --seed 1 --date 2026-06-01 --cof "$repo/config/wmm/WMM2025.COF" \
-  --out-dir "$work/sim" >/dev/null
-
 # A port of its own, ttl=0: nothing leaves the machine, other runs do not mix in.
 url="udpm://239.255.76.67:$((30000 + $$ % 20000))?ttl=0"
 cat >"$work/soak.toml" <<TOML
@@ -67,12 +61,16 @@ rate_hz = 100.0
 wmm = "$repo/config/wmm/WMM2025.COF"
 [lcm]
 url = "$url"
-[imu_csv]
-enabled = true
-path = "$work/sim/imu.csv"
-nmea = "$work/sim/gps.nmea"
+[playback]
 speed = $speed
 at_end = "loop"
+[candump_log]
+enabled = true
+path = "$repo/config/demo/sim-urban-walk-can.log.gz"
+can_config = "$repo/config/can-headingd.toml"
+[nmea_log]
+enabled = true
+path = "$repo/config/demo/sim-urban-walk.nmea"
 [recorder]
 enabled = false
 TOML

@@ -190,4 +190,11 @@ AssembledSamples EpochAssembler::finish() {
   return out;
 }
 
+AssembledSamples EpochAssembler::restartStream() {
+  AssembledSamples out = finish();
+  released_ = EpochKey{};
+  carried_mag_valid_ = false;
+  return out;
+}
+
 }  // namespace headingd::can

@@ -14,6 +14,10 @@
 // Bad times (log_frame_times.hpp): frames far off the times around them are skipped, steps of
 // the log's clock are played without waiting; both counted. A gzip log cut short is played
 // as far as it goes (log_end_missing on STATUS).
+//
+// [playback] at_end = "loop": at its end the log plays again from its first frame, every
+// frame's time moved on by the clock's loop length (playback_clock.hpp), so the samples'
+// times keep increasing; loops_played on STATUS.
 #include <atomic>
 #include <boost/asio/steady_timer.hpp>
 #include <cstdint>
@@ -60,6 +64,10 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
 
   // Timestamp of the log's first frame played (its own clock), nullopt for a log without frames.
   std::optional<std::int64_t> firstLogNs() const;
+  std::optional<std::int64_t> lastLogNs() const;
+  // The usual step between two frames of the log's first CAN ID (median of the first
+  // thousand): the IMU's sample period. nullopt for a log with fewer than two such frames.
+  std::optional<std::int64_t> sampleStepNs() const { return sample_step_ns_; }
   std::size_t frameCount() const { return frames_.size(); }
   const can::CandumpCounters& readerCounters() const { return reader_counters_; }
 
@@ -69,6 +77,8 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
   void playDue();  // on the io thread: every frame due by now, then the timer for the next
   void pushSamples(const can::AssembledSamples& samples);
   void finish();
+  // At the end of the frames: true when the log plays again (at_end = "loop").
+  bool startNextLoop();
   // Drops the outliers of `all` into frames_ and their playback times into play_ns_.
   void placeFrames(const std::string& path, const std::vector<can::CanFrame>& all,
                    const std::vector<std::uint64_t>& lines);
@@ -88,10 +98,13 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
   std::uint64_t time_outlier_frames_ = 0;
   std::uint64_t time_steps_ = 0;
   std::size_t next_frame_ = 0;
+  std::optional<std::int64_t> sample_step_ns_;
+  std::int64_t loop_offset_ns_ = 0;  // added to every time in the loop being played
 
   boost::asio::steady_timer timer_;
   std::atomic<bool> finished_{false};
   std::atomic<std::uint64_t> frames_played_{0};
+  std::atomic<std::uint64_t> loops_played_{0};
 };
 
 }  // namespace headingd::daemon

@@ -8,6 +8,10 @@
 // Sensor time: an epoch's t_ns is its UTC on the log clock (nmea_log_time.hpp), the axis of
 // the candump log's timestamps, so the estimator places it among the IMU samples as it was
 // recorded; arrival time: when the player fed it.
+//
+// [playback] at_end = "loop": once played, the log starts again when the log clock reaches
+// its first epoch one loop later (playback_clock.hpp), every epoch's time moved on by the
+// loop length; loops_played on STATUS.
 #include <atomic>
 #include <boost/asio/steady_timer.hpp>
 #include <cstdint>
@@ -50,6 +54,9 @@ class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
 
   // The first epoch's time on the log clock, nullopt for a log without a time of fix.
   std::optional<std::int64_t> firstLogNs() const { return first_log_ns_; }
+  std::optional<std::int64_t> lastLogNs() const { return last_log_ns_; }
+  // The usual step between two epochs (median), nullopt for fewer than two.
+  std::optional<std::int64_t> epochStepNs() const { return epoch_step_ns_; }
   std::size_t epochCount() const { return epochs_in_log_; }
 
  private:
@@ -57,11 +64,17 @@ class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
   nmea::NmeaLogPlayerCounters currentCounters() const override { return player_->counters(); }
   void onFix(const nmea::Fix& fix, std::int64_t receive_ns);
   void onFinished();
+  // Starts the player when the log clock reaches the first epoch of the current loop.
+  void startPlayerOnTime();
 
   AtEnd at_end_;
   const PlaybackClock* clock_;
   SampleRing<GpsRingEntry>* ring_;
   std::optional<std::int64_t> first_log_ns_;
+  std::optional<std::int64_t> last_log_ns_;
+  std::optional<std::int64_t> epoch_step_ns_;
+  std::int64_t loop_offset_ns_ = 0;  // added to every epoch time of the loop being played
+  std::uint64_t dates_not_believed_in_past_loops_ = 0;
   std::optional<std::int64_t> first_day_ns_;  // NmeaLogTime::logDayStart
   std::int64_t offset_ns_ = 0;
   std::size_t epochs_in_log_ = 0;
@@ -73,6 +86,7 @@ class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
   std::atomic<bool> finished_{false};
   std::atomic<std::uint64_t> untimed_{0};
   std::atomic<std::uint64_t> dates_not_believed_{0};  // NmeaLogTime::datesNotBelieved, for STATUS
+  std::atomic<std::uint64_t> loops_played_{0};
 };
 
 }  // namespace headingd::daemon

@@ -6,6 +6,11 @@
 // where log_t0_ns is the earliest first timestamp of all the logs. The daemon fills
 // log_t0_ns once the logs are read and start_mono_ns when it starts the sources; the sources
 // only read it (after start(), from their own threads).
+//
+// With [playback] at_end = "loop" every log plays again and again, loop k later on the log
+// axis by k * loop_ns: one loop is the logs' common span (earliest first to latest last
+// timestamp) plus the shortest sample period among them, so that at the seam the IMU samples
+// step on by one period and every log starts its next loop after it ended its last.
 #include <cmath>
 #include <cstdint>
 
@@ -15,6 +20,7 @@ struct PlaybackClock {
   double speed = 1.0;
   std::int64_t log_t0_ns = 0;
   std::int64_t start_mono_ns = 0;
+  std::int64_t loop_ns = 0;  // the length of one loop on the log axis; 0 when not looping
 
   // CLOCK_MONOTONIC time at which log time `log_ns` is played.
   std::int64_t dueMonoNs(std::int64_t log_ns) const {

@@ -40,7 +40,7 @@ struct SourceConfig {
 struct PlaybackConfig {
   double speed = 1.0;          // 1 = real time; the estimator sees the logs' own timestamps at any speed
   double start_delay_s = 0.0;  // wait this long after start before the first frame or sentence
-  AtEnd at_end = AtEnd::kStay;  // kStay or kExit ("loop" is for [imu_csv] only)
+  AtEnd at_end = AtEnd::kStay;  // kStay, kExit or kLoop (not with [recording]: a run replays once)
 };
 
 struct SourceConfigs {

@@ -49,12 +49,19 @@ struct SourceContext {
   std::uint16_t source_index = 0;       // of the source being made
   std::optional<std::int64_t> log_t0_ns;  // earliest first timestamp of the log sources made so far
   const RecorderSinks* recorder = nullptr;  // null: the live sources record nothing
+  std::optional<std::int64_t> log_end_ns;  // latest last timestamp of the log sources made so far
+  std::optional<std::int64_t> log_step_ns;  // shortest sample period of the log sources made so far
 
   // A new ring named "<source_name>.imu" / "<source_name>.gps".
   SampleRing<ImuRingEntry>* addImuRing(const std::string& source_name);
   SampleRing<GpsRingEntry>* addGpsRing(const std::string& source_name);
   // A log source's first timestamp on the log clock (nullopt: it has none).
   void logStartsAt(std::optional<std::int64_t> log_ns);
+  // A log source's last timestamp and its usual step between samples (epochs), for the loop
+  // length of [playback] at_end = "loop" (playback_clock.hpp); nullopt: it has none.
+  void logEndsAt(std::optional<std::int64_t> last_log_ns, std::optional<std::int64_t> sample_step_ns);
+  // One loop's length on the log axis from the spans reported so far (0: no log has times).
+  std::int64_t loopLengthNs() const;
 };
 
 struct SourceKind {

@@ -123,6 +123,7 @@ void NmeaLogPlayer::index() {
 void NmeaLogPlayer::start() {
   if (running_) return;
   running_ = true;
+  counters_.finished = false;
   next_group_ = 0;
   next_due_ = std::chrono::steady_clock::now();
   scheduleNext();

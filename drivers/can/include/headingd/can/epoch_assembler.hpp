@@ -61,6 +61,11 @@ class EpochAssembler {
   AssembledSamples flush(std::int64_t now_ns);
   // End of input: closes the open epoch.
   AssembledSamples finish();
+  // The frames that follow are a stream of their own (a log played again from its start):
+  // closes the open epoch and forgets the last one released and a carried magnetometer
+  // reading, so that the new stream's first counters are not taken for late or repeated
+  // frames of the old one.
+  AssembledSamples restartStream();
 
   const AssemblerCounters& counters() const { return counters_; }
   // True while an epoch is being collected (flush() or finish() would close it).

@@ -57,7 +57,8 @@ class NmeaLogPlayer {
   NmeaLogPlayer(const NmeaLogPlayer&) = delete;
   NmeaLogPlayer& operator=(const NmeaLogPlayer&) = delete;
 
-  // Plays from the first group; the first is fed on the io_context right away.
+  // Plays from the first group; the first is fed on the io_context right away. Once the log
+  // has been played (on_finished called), start() plays it again (a looping player).
   void start();
   // Stops after the group being fed; the epoch in progress is delivered.
   void stop();

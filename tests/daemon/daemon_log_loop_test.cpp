@@ -1,0 +1,128 @@
+// [playback] at_end = "loop": the daemon's log sources ([candump_log] and [nmea_log]) play
+// the first 10 s of the demo capture again and again, later on the log axis by one loop each
+// time. The estimator must see one unbroken time line (no gap, no time going back, no
+// duplicate at the seams), the GPS epochs must keep their place among the IMU samples, and
+// STATUS must count the loops. (tools/scripts/soak.sh runs the whole demo capture this way
+// for hours.)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+
+#include "daemon_test_support.hpp"
+#include "lcm_collector.hpp"
+#include "status_lookup.hpp"
+
+namespace headingd::daemon {
+namespace {
+
+using namespace std::chrono_literals;
+using namespace test;
+
+constexpr const char* kDemoCan = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz";
+constexpr const char* kDemoNmea = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
+
+std::int64_t statusCounter(const headingd::status_t& s, const std::string& name) {
+  for (const auto& c : s.counters) {
+    if (c.name == name) return c.value;
+  }
+  return -1;
+}
+
+// The demo capture's first 10 s: 1000 IMU epochs of 3 frames (0 .. 9.9904 s) and the NMEA
+// epochs of 0 .. 9 s (3 sentences each). One loop is then 10.0004 s of log time (the latest
+// last time, the CAN log's, plus one 10 ms sample period).
+std::string loopConfig(const TempDir& dir, const std::string& url, double speed) {
+  const std::string cut = std::string("zcat ") + kDemoCan + " | head -n 3000 > " + dir.file("can.log") +
+                          " && head -n 30 " + kDemoNmea + " > " + dir.file("gps.nmea");
+  EXPECT_EQ(std::system(cut.c_str()), 0);
+  return dir.write("headingd.toml", "[lcm]\nurl = \"" + url +
+                                        "\"\n[daemon]\nstatus_period_s = 0.2\n[playback]\nspeed = " +
+                                        std::to_string(speed) + "\nat_end = \"loop\"\n[candump_log]\nenabled = "
+                                        "true\npath = \"" + dir.file("can.log") + "\"\ncan_config = \"" +
+                                        HEADINGD_CONFIG_DIR "/can-headingd.toml\"\n[nmea_log]\nenabled = true\n"
+                                        "path = \"" + dir.file("gps.nmea") + "\"\n");
+}
+
+TEST(DaemonLogLoop, CandumpAndNmeaLogsLoopOnOneUnbrokenTimeLine) {
+  TempDir dir;
+  const std::string url = lcmUrl(0);
+  const std::string config = loopConfig(dir, url, 20.0);  // a loop every 0.5 s
+  LcmCollector lcm(url);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  // Four loops and more; the last STATUS comes while it still plays.
+  std::this_thread::sleep_for(2500ms);
+  const auto status_list = lcm.status();
+  ASSERT_FALSE(status_list.empty()) << test::readFile(dir.file("err"));
+  const headingd::status_t last = status_list.back().message;
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.waitFor(5s), 0) << test::readFile(dir.file("err"));
+  lcm.stop();
+  const std::string err = test::readFile(dir.file("err"));
+  EXPECT_NE(err.find("at end: loop (a loop is 10.000 s of log time)"), std::string::npos) << err;
+
+  const auto* can = findSource(last, "candump_log");
+  const auto* gps = findSource(last, "nmea_log");
+  ASSERT_NE(can, nullptr);
+  ASSERT_NE(gps, nullptr);
+  const std::int64_t can_loops = counter(*can, "loops_played");
+  const std::int64_t gps_loops = counter(*gps, "loops_played");
+  std::fprintf(stderr, "after 2.5 s at 20x: candump_log %lld loops (%lld frames played), nmea_log %lld loops (%lld "
+               "epochs); estimator: samples accepted %lld, gaps %lld, backwards %lld, duplicates %lld\n",
+               static_cast<long long>(can_loops), static_cast<long long>(counter(*can, "frames_played")),
+               static_cast<long long>(gps_loops), static_cast<long long>(counter(*gps, "epochs")),
+               static_cast<long long>(statusCounter(last, "samples_accepted")), static_cast<long long>(statusCounter(last, "gaps")),
+               static_cast<long long>(statusCounter(last, "backwards_time")),
+               static_cast<long long>(statusCounter(last, "duplicate_time")));
+  EXPECT_GT(statusCounter(last, "samples_accepted"), 3 * 1000);
+  EXPECT_GE(can_loops, 3);
+  EXPECT_LE(std::abs(can_loops - gps_loops), 1);
+  EXPECT_EQ(can->state, "running");
+  EXPECT_EQ(gps->state, "running");
+  // The loops are one time line to the estimator: nothing rejected at the seams.
+  for (const char* name : {"gaps", "backwards_time", "clock_jumps", "duplicate_time", "imu_rejected"}) {
+    EXPECT_EQ(statusCounter(last, name), 0) << name;
+  }
+  EXPECT_EQ(counter(*can, "ring_full_drops"), 0);
+  EXPECT_EQ(counter(*can, "time_steps"), 0);
+  EXPECT_EQ(counter(*can, "duplicate_frames"), 0);
+
+  // The published sample times only go forward, by at most a few sample periods (loops
+  // included); the GPS epochs too, one a second of log time.
+  const auto heading = lcm.heading();
+  ASSERT_GT(heading.size(), 100u);
+  std::int64_t largest_step_us = 0, went_back = 0;
+  for (std::size_t i = 1; i < heading.size(); ++i) {
+    const std::int64_t step = heading[i].message.sample_utime - heading[i - 1].message.sample_utime;
+    largest_step_us = std::max(largest_step_us, step);
+    went_back += step < 0;
+  }
+  EXPECT_EQ(went_back, 0);
+  const double span_s = static_cast<double>(heading.back().message.sample_utime - heading.front().message.sample_utime) * 1e-6;
+  EXPECT_GT(span_s, 3 * 10.0);  // more than three loops of log time
+  const auto fixes = lcm.gps();
+  ASSERT_GT(fixes.size(), 30u);
+  for (std::size_t i = 1; i < fixes.size(); ++i) {
+    const std::int64_t step = fixes[i].message.sample_utime - fixes[i - 1].message.sample_utime;
+    EXPECT_GT(step, 500'000) << "GPS epoch " << i;  // ~1 s apart, the seam too (9 s -> 10.0004 s)
+    EXPECT_LT(step, 1'500'000) << "GPS epoch " << i;
+  }
+}
+
+TEST(DaemonLogLoop, LoopWithARecordingIsAConfigurationError) {
+  TempDir dir;
+  const std::string unpack = std::string("tar xzf " HEADINGD_TEST_DATA_DIR "/recordings/sim-walk-30s.tar.gz -C ") + dir.path();
+  ASSERT_EQ(std::system(unpack.c_str()), 0);
+  const std::string config = dir.write("headingd.toml",
+                                       "[playback]\nat_end = \"loop\"\n[recording]\nenabled = true\ndir = \"" +
+                                           dir.file("sim-walk-30s") + "\"\n");
+  ChildProcess check({HEADINGD_BIN, "--config", config, "--check-config"}, dir.file("out"), dir.file("err"));
+  EXPECT_EQ(check.waitFor(10s), 2);
+  const std::string err = test::readFile(dir.file("err"));
+  EXPECT_NE(err.find("at_end"), std::string::npos) << err;
+  EXPECT_NE(err.find("a [recording] is replayed once"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace headingd::daemon
