@@ -17,8 +17,6 @@ namespace {
 using namespace std::chrono_literals;
 using namespace test;
 
-constexpr const char* kDemoCan = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz";
-constexpr const char* kDemoNmea = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
 constexpr int kFrames = 3000;  // the first 10 s of the demo log: 1000 epochs of 3 frames
 
 // The first kFrames lines of the demo candump log.

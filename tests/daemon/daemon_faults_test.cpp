@@ -27,14 +27,14 @@ namespace {
 using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::counter;
-using test::sourceOfKind;
+using test::findSource;
 using test::statusCounter;
 using test::LcmCollector;
+using test::kDemoNmea;
 using test::lcmUrl;
 using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
-constexpr const char* kDemoNmea = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
 
 void printCounters(const char* when, const headingd::source_status_t& s) {
   std::fprintf(stderr, "%s: %s %s (%s):", when, s.name.c_str(), s.state.c_str(), s.last_error.c_str());
@@ -69,7 +69,7 @@ class DaemonFaults : public test::DaemonUnderFault {
   }
   std::optional<headingd::source_status_t> gpsSource() const {
     const auto s = lcm_->status();
-    const auto* gps = s.empty() ? nullptr : sourceOfKind(s.back().message, "gps_serial");
+    const auto* gps = s.empty() ? nullptr : findSource(s.back().message, "gps_serial");
     if (gps == nullptr) return std::nullopt;
     return *gps;
   }
@@ -109,7 +109,7 @@ TEST_F(DaemonFaults, GpsPtyClosedAndAnotherBehindTheSamePathIsReconnectedAndCoun
   }
   EXPECT_TRUE(waitUntil([&] { return lcm_->gps().size() >= 12; }, 5s)) << lcm_->gps().size() << " GPS messages";
   const headingd::status_t after = nextStatus();
-  const auto* gps = sourceOfKind(after, "gps_serial");
+  const auto* gps = findSource(after, "gps_serial");
   ASSERT_NE(gps, nullptr);
   printCounters("plugged in again", *gps);
 

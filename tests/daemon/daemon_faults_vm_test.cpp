@@ -35,7 +35,7 @@ using test::waitUntil;
 constexpr int kRows = 2857;  // the first 10 s of BROAD trial 05 (286 Hz, three frames a sample)
 const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0";  // alone in the VM's network
 
-const headingd::source_status_t* canSource(const headingd::status_t& m) { return test::sourceOfKind(m, "can"); }
+const headingd::source_status_t* canSource(const headingd::status_t& m) { return test::findSource(m, "can"); }
 
 void printCanCounters(const char* when, const headingd::status_t& m) {
   const auto* can = canSource(m);

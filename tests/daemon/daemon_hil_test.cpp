@@ -41,7 +41,7 @@ constexpr double kMaxP95ErrorDeg = 15.0;
 
 using test::counter;
 
-const headingd::source_status_t* sourceOfKind(const headingd::status_t& m, const std::string& kind) {
+const headingd::source_status_t* findSource(const headingd::status_t& m, const std::string& kind) {
   for (const auto& s : m.sources) {
     if (s.kind == kind) return &s;
   }
@@ -112,8 +112,8 @@ TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
   // Sources: every epoch of the capture became one sample, every GPS epoch one fix.
   const auto status = lcm.status();
   ASSERT_FALSE(status.empty());
-  const auto* can = sourceOfKind(status.back().message, "can");
-  const auto* serial = sourceOfKind(status.back().message, "gps_serial");
+  const auto* can = findSource(status.back().message, "can");
+  const auto* serial = findSource(status.back().message, "gps_serial");
   ASSERT_NE(can, nullptr);
   ASSERT_NE(serial, nullptr);
   std::fprintf(stderr, "HIL can source:");

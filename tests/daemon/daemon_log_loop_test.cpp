@@ -20,15 +20,6 @@ namespace {
 using namespace std::chrono_literals;
 using namespace test;
 
-constexpr const char* kDemoCan = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz";
-constexpr const char* kDemoNmea = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
-
-std::int64_t statusCounter(const headingd::status_t& s, const std::string& name) {
-  for (const auto& c : s.counters) {
-    if (c.name == name) return c.value;
-  }
-  return -1;
-}
 
 // The demo capture's first 10 s: 1000 IMU epochs of 3 frames (0 .. 9.9904 s) and the NMEA
 // epochs of 0 .. 9 s (3 sentences each). One loop is then 10.0004 s of log time (the latest

@@ -98,6 +98,12 @@ class ChildProcess {
 
 // An LCM URL on a port of this process's own (the group and ttl=0 stay): tests running at
 // the same time, here or in another build, do not hear each other.
+#ifdef HEADINGD_CONFIG_DIR
+// The demo capture (config/demo/README.md): the CAN IMU frames as a candump log, the GPS as NMEA.
+inline constexpr const char* kDemoCan = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz";
+inline constexpr const char* kDemoNmea = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
+#endif
+
 inline std::string lcmUrl(int offset) {
   return "udpm://239.255.76.67:" + std::to_string(20000 + (getpid() % 20000) * 2 + offset) + "?ttl=0";
 }

@@ -10,23 +10,9 @@
 
 #include "daemon_test_support.hpp"
 #include "lcm_collector.hpp"
+#include "status_lookup.hpp"
 
 namespace headingd::daemon::test {
-
-inline const headingd::source_status_t* sourceOfKind(const headingd::status_t& m, const std::string& kind) {
-  for (const auto& s : m.sources) {
-    if (s.kind == kind) return &s;
-  }
-  return nullptr;
-}
-
-// One of STATUS's own counters (estimator, loop, recorder) by name, -1 when absent.
-inline std::int64_t statusCounter(const headingd::status_t& m, const std::string& name) {
-  for (const auto& c : m.counters) {
-    if (c.name == name) return c.value;
-  }
-  return -1;
-}
 
 class DaemonUnderFault : public ::testing::Test {
  protected:

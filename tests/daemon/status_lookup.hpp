@@ -1,5 +1,5 @@
 #pragma once
-// Reading a STATUS message in tests: a source by its kind, a source's counter by its name.
+// Reading a STATUS message in tests: a source by its kind, a counter by its name.
 #include <cstdint>
 #include <string>
 
@@ -14,6 +14,14 @@ inline const headingd::source_status_t* findSource(const headingd::status_t& s, 
     if (src.kind == kind) return &src;
   }
   return nullptr;
+}
+
+// One of STATUS's own counters (estimator, loop, recorder) by name, -1 when absent.
+inline std::int64_t statusCounter(const headingd::status_t& s, const std::string& name) {
+  for (const auto& c : s.counters) {
+    if (c.name == name) return c.value;
+  }
+  return -1;
 }
 
 // A source's counter on STATUS by name, -1 when it has none.
