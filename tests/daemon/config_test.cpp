@@ -241,7 +241,7 @@ TEST_F(DaemonConfigErrors, LogSourcesNameTheirKeys) {
       << missing;
   EXPECT_NE(errorOf(dir, "[playback]\nspeed = 0\n").find(at(2) + "[playback] speed: 0 is out of range"),
             std::string::npos);
-  EXPECT_NE(errorOf(dir, "[playback]\nat_end = \"loop\"\n").find(at(2) + "[playback] at_end: 'loop' is not one of"),
+  EXPECT_NE(errorOf(dir, "[playback]\nat_end = \"rewind\"\n").find(at(2) + "[playback] at_end: 'rewind' is not one of"),
             std::string::npos);
   EXPECT_NE(errorOf(dir, "[nmea_log]\ntime_offset = 1\n").find(at(2) + "[nmea_log] time_offset: unknown key"),
             std::string::npos);
