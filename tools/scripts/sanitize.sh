@@ -54,7 +54,11 @@ configure_and_build() {
 
 run_asan() {
   local dir=$repo/build-asan start rc=0
-  configure_and_build "$dir" "-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer" || return 1
+  # -fno-sanitize=vptr: gcc 12's vptr check breaks LCM's C++ subscription callback
+  # (lcm-cpp-impl.hpp, LCMMHSubscription::cb_func: with ASan+UBSan it reads its user_data as
+  # 0x1; with UBSan alone it reports an invalid vptr; plain, ASan alone or without the vptr
+  # check, a minimal subscriber receives its message). Every other UBSan check stays on.
+  configure_and_build "$dir" "-fsanitize=address,undefined -fno-sanitize=vptr -fno-sanitize-recover=all -fno-omit-frame-pointer" || return 1
   start=$(date +%s)
   ctest --test-dir "$dir" --output-on-failure -j"$jobs" -LE '^(vm|package|selfcontained|fuzz)$' || rc=$?
   echo "sanitize: ASan+UBSan suite took $(seconds_since "$start") s (exit $rc)"
