@@ -1,6 +1,5 @@
 #include "headingd/daemon/candump_log_source.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <spdlog/spdlog.h>
 #include <sstream>
@@ -10,6 +9,7 @@
 #include "headingd/can/epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
 #include "headingd/daemon/log_frame_times.hpp"
+#include "headingd/daemon/median_step.hpp"
 #include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/input_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
@@ -106,10 +106,7 @@ void CandumpLogSource::placeFrames(const std::string& path, const std::vector<ca
     if (previous && play_ns_[i] > *previous) steps.push_back(play_ns_[i] - *previous);
     previous = play_ns_[i];
   }
-  if (!steps.empty()) {
-    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
-    sample_step_ns_ = steps[steps.size() / 2];
-  }
+  sample_step_ns_ = medianStep(std::move(steps));
   auto seconds = [](std::int64_t ns) { return static_cast<double>(ns) * 1e-9; };
   if (times.outlier_frames > 0) {
     const auto at = static_cast<std::size_t>(times.first_outlier_index);
@@ -154,7 +151,7 @@ void CandumpLogSource::finish() {
 }
 
 bool CandumpLogSource::startNextLoop() {
-  if (at_end_ != AtEnd::kLoop || clock_->loop_ns <= 0 || frames_.empty()) return false;
+  if (clock_->loop_ns <= 0 || frames_.empty()) return false;  // loop_ns > 0: at_end = "loop"
   // The log's epoch counters start again (its last and first may even be equal).
   pushSamples(assembler_->restartStream());
   loop_offset_ns_ += clock_->loop_ns;

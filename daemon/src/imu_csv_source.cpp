@@ -7,6 +7,7 @@
 
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/clocks.hpp"
+#include "headingd/daemon/median_step.hpp"
 #include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/nmea_epochs.hpp"
@@ -59,8 +60,7 @@ ImuCsvSource::ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, s
     // looks like one ordinary sample step to the estimator's gate.
     std::vector<std::int64_t> steps;
     for (std::size_t i = 1; i < std::min<std::size_t>(imu_.size(), 1001); ++i) steps.push_back(imu_[i].t_ns - imu_[i - 1].t_ns);
-    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
-    loop_length_ns_ = imu_.back().t_ns - imu_.front().t_ns + std::max<std::int64_t>(steps[steps.size() / 2], 1);
+    loop_length_ns_ = imu_.back().t_ns - imu_.front().t_ns + std::max<std::int64_t>(*medianStep(std::move(steps)), 1);
   }
 }
 

@@ -1,12 +1,12 @@
 #include "headingd/daemon/nmea_log_source.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <spdlog/spdlog.h>
 #include <vector>
 
 #include "headingd/core/toml_table_reader.hpp"
+#include "headingd/daemon/median_step.hpp"
 #include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/nmea_epochs.hpp"
 #include "headingd/files/input_file.hpp"
@@ -96,10 +96,7 @@ NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config
     if (last_log_ns_ && *t > *last_log_ns_ && steps.size() < 1000) steps.push_back(*t - *last_log_ns_);
     if (!last_log_ns_ || *t > *last_log_ns_) last_log_ns_ = t;
   }
-  if (!steps.empty()) {
-    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
-    epoch_step_ns_ = steps[steps.size() / 2];
-  }
+  epoch_step_ns_ = medianStep(std::move(steps));
 }
 
 NmeaLogSource::~NmeaLogSource() { stop(); }
@@ -122,7 +119,7 @@ void NmeaLogSource::onFix(const nmea::Fix& fix, std::int64_t receive_ns) {
 }
 
 void NmeaLogSource::onFinished() {
-  if (at_end_ == AtEnd::kLoop && clock_->loop_ns > 0 && first_log_ns_) {
+  if (clock_->loop_ns > 0 && first_log_ns_) {  // loop_ns > 0: at_end = "loop"
     // Called from the player's last group: the next loop starts from the io thread's queue.
     dates_not_believed_in_past_loops_ += log_time_->datesNotBelieved();
     loop_offset_ns_ += clock_->loop_ns;

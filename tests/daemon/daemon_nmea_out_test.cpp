@@ -368,6 +368,9 @@ bool inPrivateNetworkNamespace() {
 // its clients (gpspipe). Debian 12's gpsd (3.22) takes HDT only, and only from the talkers
 // its lexer knows (HC, II, GP, ...; not HE): hence talker = "II".
 TEST(DaemonNmeaOut, GpsdReadsTheHeadingAndReportsItAsAtt) {
+  // gpsd listens on a TCP port and talks to the system bus: run only where in-private-net.sh
+  // gave the test a network of its own (CTest does), never on the shared machine's network.
+  // Without the gpsd package (a machine set up without install-deps.sh) there is nothing to run.
   if (!inPrivateNetworkNamespace()) GTEST_SKIP() << "gpsd runs only in a private network namespace";
   if (access("/usr/sbin/gpsd", X_OK) != 0 || access("/usr/bin/gpspipe", X_OK) != 0) {
     GTEST_SKIP() << "gpsd or gpspipe missing (tools/scripts/install-deps.sh installs them)";

@@ -70,6 +70,8 @@ bool fifoPermittedHere() {
 }
 
 TEST(DaemonRealtime, DefaultsRunTheEstimatorAndDriverThreadsUnderFifoWithMemoryLocked) {
+  // A user without CAP_SYS_NICE or an RLIMIT_RTPRIO cannot be granted SCHED_FIFO at all (the
+  // refusal itself is checked by RefusedSchedulingIsSaidOnce... below, which runs anywhere).
   if (!fifoPermittedHere()) GTEST_SKIP() << "no CAP_SYS_NICE or RLIMIT_RTPRIO here: nothing to grant";
   TempDir dir;
   const std::string url = lcmUrl(20);
@@ -108,6 +110,7 @@ TEST(DaemonRealtime, DefaultsRunTheEstimatorAndDriverThreadsUnderFifoWithMemoryL
 // A file played faster than real time decodes as fast as it can: its thread keeps normal
 // scheduling, so that it cannot hold a CPU; STATUS says there is no driver thread.
 TEST(DaemonRealtime, FileSourcePlayedFasterThanRealTimeKeepsNormalScheduling) {
+  // Only where SCHED_FIFO can be granted is it meaningful that this thread does not get it.
   if (!fifoPermittedHere()) GTEST_SKIP() << "no CAP_SYS_NICE or RLIMIT_RTPRIO here";
   TempDir dir;
   const std::string url = lcmUrl(21);
