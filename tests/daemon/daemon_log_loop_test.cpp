@@ -1,4 +1,4 @@
-// [playback] at_end = "loop": the daemon's log sources ([candump_log] and [nmea_log]) play
+// at_end = "loop": the daemon's log sources ([candump_log] and [nmea_log]), and [imu_csv], play
 // the first 10 s of the demo capture again and again, later on the log axis by one loop each
 // time. The estimator must see one unbroken time line (no gap, no time going back, no
 // duplicate at the seams), the GPS epochs must keep their place among the IMU samples, and
@@ -99,6 +99,61 @@ TEST(DaemonLogLoop, CandumpAndNmeaLogsLoopOnOneUnbrokenTimeLine) {
     EXPECT_GT(step, 500'000) << "GPS epoch " << i;  // ~1 s apart, the seam too (9 s -> 10.0004 s)
     EXPECT_LT(step, 1'500'000) << "GPS epoch " << i;
   }
+}
+
+// [imu_csv] at_end = "loop": the IMU file source's own loop (not on the [playback] clock),
+// which also takes its loop length from the file's median sample step.
+TEST(DaemonLogLoop, ImuCsvLoopsOnOneUnbrokenTimeLine) {
+  TempDir dir;
+  const std::string url = lcmUrl(0);
+  // The first 1000 rows of a BROAD trial: 0 .. 3.4965 s at 286 Hz, so a loop is 3.5 s of file
+  // time, 0.35 s at 10x.
+  const std::string cut = std::string("zcat " HEADINGD_TEST_DATA_DIR
+                                      "/broad/05_undisturbed_slow_rotation_with_breaks_B.csv.gz | head -n 1001 > ") +
+                          dir.file("imu.csv");
+  ASSERT_EQ(std::system(cut.c_str()), 0);
+  const std::string config =
+      dir.write("headingd.toml", "[lcm]\nurl = \"" + url +
+                                     "\"\n[daemon]\nstatus_period_s = 0.2\n[imu_csv]\nenabled = true\npath = \"" +
+                                     dir.file("imu.csv") + "\"\nspeed = 10.0\nat_end = \"loop\"\n");
+  LcmCollector lcm(url);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  std::this_thread::sleep_for(2500ms);
+  const auto status_list = lcm.status();
+  ASSERT_FALSE(status_list.empty()) << test::readFile(dir.file("err"));
+  const headingd::status_t last = status_list.back().message;
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.waitFor(5s), 0) << test::readFile(dir.file("err"));
+  lcm.stop();
+
+  const auto* csv = findSource(last, "imu_csv");
+  ASSERT_NE(csv, nullptr);
+  const std::int64_t loops = counter(*csv, "loops_played");
+  std::fprintf(stderr, "after 2.5 s at 10x: imu_csv %lld loops; samples accepted %lld\n", static_cast<long long>(loops),
+               static_cast<long long>(statusCounter(last, "samples_accepted")));
+  EXPECT_GE(loops, 3);
+  EXPECT_EQ(csv->state, "running");
+  EXPECT_GT(statusCounter(last, "samples_accepted"), 3 * 1000);
+  for (const char* name : {"gaps", "backwards_time", "clock_jumps", "duplicate_time", "imu_rejected"}) {
+    EXPECT_EQ(statusCounter(last, name), 0) << name;
+  }
+  // One time line: forward only, and at the seams one usual step (3.5 ms), not a gap.
+  const auto heading = lcm.heading();
+  ASSERT_GT(heading.size(), 100u);
+  std::int64_t largest_step_us = 0, went_back = 0;
+  for (std::size_t i = 1; i < heading.size(); ++i) {
+    const std::int64_t step = heading[i].message.sample_utime - heading[i - 1].message.sample_utime;
+    largest_step_us = std::max(largest_step_us, step);
+    went_back += step < 0;
+  }
+  EXPECT_EQ(went_back, 0);
+  // HEADING goes out at a fixed rate of wall time, so at 10x about 0.1 s of file time apart
+  // (more across a stall of this machine); a seam that skipped or repeated a loop would be
+  // 3.5 s or more, or go back.
+  std::fprintf(stderr, "largest step between HEADING sample times: %.3f s\n", largest_step_us * 1e-6);
+  EXPECT_LT(largest_step_us, 2'000'000);
+  const double span_s = static_cast<double>(heading.back().message.sample_utime - heading.front().message.sample_utime) * 1e-6;
+  EXPECT_GT(span_s, 3 * 3.5);
 }
 
 TEST(DaemonLogLoop, LoopWithARecordingIsAConfigurationError) {

@@ -2,13 +2,15 @@
 // Real files in a fresh temporary folder, and a child process for the daemon binary.
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <fcntl.h>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <string>
 #include <sys/wait.h>
 #include <thread>
@@ -46,11 +48,17 @@ inline std::string readFile(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// A process started with posix_spawn, stdout and stderr to files.
+// A process started with fork and exec, stdout and stderr to files. It dies with the thread
+// that started it (PR_SET_PDEATHSIG): a test process that crashes or is killed by ctest's
+// timeout takes its daemon with it, instead of leaving it running and holding the ptys,
+// ports and files that later tests reuse. So start a ChildProcess from the test's own thread
+// (a thread that ends kills its children).
 class ChildProcess {
  public:
   ChildProcess(const std::vector<std::string>& argv, const std::string& stdout_path, const std::string& stderr_path,
                const std::vector<std::string>& extra_env = {}) {
+    // Everything the child needs is made before fork: between fork and exec, a child of a
+    // threaded process may only make async-signal-safe calls (no allocation).
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
@@ -60,13 +68,32 @@ class ChildProcess {
     std::vector<char*> env;
     for (auto& e : env_strings) env.push_back(e.data());
     env.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int rc = posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), env.data());
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) throw std::runtime_error("posix_spawn " + argv[0] + " failed");
+    // A pipe closed by a successful exec: an error number written to it says exec failed.
+    int exec_failed[2];
+    if (pipe2(exec_failed, O_CLOEXEC) != 0) throw std::runtime_error("pipe2 failed");
+    const pid_t parent = getpid();
+    pid_ = fork();
+    if (pid_ < 0) throw std::runtime_error("fork for " + argv[0] + " failed");
+    if (pid_ == 0) {
+      // If the parent died before the prctl, no signal would come: check, and go.
+      if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent) _exit(127);
+      const int out = open(stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+      const int err = open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+      if (out < 0 || err < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0) _exit(127);
+      execve(args[0], args.data(), env.data());
+      const int error = errno;
+      (void)!write(exec_failed[1], &error, sizeof error);
+      _exit(127);
+    }
+    close(exec_failed[1]);
+    int error = 0;
+    const ssize_t n = read(exec_failed[0], &error, sizeof error);
+    close(exec_failed[0]);
+    if (n > 0) {
+      waitpid(pid_, nullptr, 0);
+      pid_ = -1;
+      throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(error));
+    }
   }
   ~ChildProcess() {
     if (pid_ > 0 && !exited_) {
