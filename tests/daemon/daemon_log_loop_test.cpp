@@ -36,21 +36,58 @@ std::string loopConfig(const TempDir& dir, const std::string& url, double speed)
                                         "path = \"" + dir.file("gps.nmea") + "\"\n");
 }
 
+// What a looping daemon published in its first 2.5 s, then stopped by SIGTERM (exit 0).
+struct LoopRun {
+  headingd::status_t last_status;  // received while it still played
+  std::vector<test::Received<headingd::heading_t>> heading;
+  std::vector<test::Received<headingd::gps_t>> gps;
+  std::string err;
+};
+
+LoopRun runLooping(const TempDir& dir, const std::string& url, const std::string& config) {
+  LcmCollector lcm(url);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  std::this_thread::sleep_for(2500ms);
+  LoopRun run;
+  const auto status_list = lcm.status();
+  if (!status_list.empty()) run.last_status = status_list.back().message;
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.waitFor(5s), 0) << test::readFile(dir.file("err"));
+  lcm.stop();
+  run.heading = lcm.heading();
+  run.gps = lcm.gps();
+  run.err = test::readFile(dir.file("err"));
+  EXPECT_FALSE(status_list.empty()) << run.err;
+  return run;
+}
+
+// The largest step between consecutive HEADING sample times, and how many went back.
+struct TimeLine {
+  std::int64_t largest_step_us = 0;
+  std::int64_t went_back = 0;
+  double span_s = 0.0;
+};
+
+TimeLine headingTimeLine(const std::vector<test::Received<headingd::heading_t>>& heading) {
+  TimeLine t;
+  for (std::size_t i = 1; i < heading.size(); ++i) {
+    const std::int64_t step = heading[i].message.sample_utime - heading[i - 1].message.sample_utime;
+    t.largest_step_us = std::max(t.largest_step_us, step);
+    t.went_back += step < 0;
+  }
+  if (!heading.empty()) {
+    t.span_s = static_cast<double>(heading.back().message.sample_utime - heading.front().message.sample_utime) * 1e-6;
+  }
+  return t;
+}
+
 TEST(DaemonLogLoop, CandumpAndNmeaLogsLoopOnOneUnbrokenTimeLine) {
   TempDir dir;
   const std::string url = lcmUrl(0);
   const std::string config = loopConfig(dir, url, 20.0);  // a loop every 0.5 s
-  LcmCollector lcm(url);
-  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
-  // Four loops and more; the last STATUS comes while it still plays.
-  std::this_thread::sleep_for(2500ms);
-  const auto status_list = lcm.status();
-  ASSERT_FALSE(status_list.empty()) << test::readFile(dir.file("err"));
-  const headingd::status_t last = status_list.back().message;
-  daemon.signal(SIGTERM);
-  EXPECT_EQ(daemon.waitFor(5s), 0) << test::readFile(dir.file("err"));
-  lcm.stop();
-  const std::string err = test::readFile(dir.file("err"));
+  const LoopRun run = runLooping(dir, url, config);  // four loops and more
+  const headingd::status_t& last = run.last_status;
+  const std::string& err = run.err;
   EXPECT_NE(err.find("at end: loop (a loop is 10.000 s of log time)"), std::string::npos) << err;
 
   const auto* can = findSource(last, "candump_log");
@@ -81,18 +118,11 @@ TEST(DaemonLogLoop, CandumpAndNmeaLogsLoopOnOneUnbrokenTimeLine) {
 
   // The published sample times only go forward, by at most a few sample periods (loops
   // included); the GPS epochs too, one a second of log time.
-  const auto heading = lcm.heading();
-  ASSERT_GT(heading.size(), 100u);
-  std::int64_t largest_step_us = 0, went_back = 0;
-  for (std::size_t i = 1; i < heading.size(); ++i) {
-    const std::int64_t step = heading[i].message.sample_utime - heading[i - 1].message.sample_utime;
-    largest_step_us = std::max(largest_step_us, step);
-    went_back += step < 0;
-  }
-  EXPECT_EQ(went_back, 0);
-  const double span_s = static_cast<double>(heading.back().message.sample_utime - heading.front().message.sample_utime) * 1e-6;
-  EXPECT_GT(span_s, 3 * 10.0);  // more than three loops of log time
-  const auto fixes = lcm.gps();
+  ASSERT_GT(run.heading.size(), 100u);
+  const TimeLine time_line = headingTimeLine(run.heading);
+  EXPECT_EQ(time_line.went_back, 0);
+  EXPECT_GT(time_line.span_s, 3 * 10.0);  // more than three loops of log time
+  const auto& fixes = run.gps;
   ASSERT_GT(fixes.size(), 30u);
   for (std::size_t i = 1; i < fixes.size(); ++i) {
     const std::int64_t step = fixes[i].message.sample_utime - fixes[i - 1].message.sample_utime;
@@ -116,16 +146,8 @@ TEST(DaemonLogLoop, ImuCsvLoopsOnOneUnbrokenTimeLine) {
       dir.write("headingd.toml", "[lcm]\nurl = \"" + url +
                                      "\"\n[daemon]\nstatus_period_s = 0.2\n[imu_csv]\nenabled = true\npath = \"" +
                                      dir.file("imu.csv") + "\"\nspeed = 10.0\nat_end = \"loop\"\n");
-  LcmCollector lcm(url);
-  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
-  std::this_thread::sleep_for(2500ms);
-  const auto status_list = lcm.status();
-  ASSERT_FALSE(status_list.empty()) << test::readFile(dir.file("err"));
-  const headingd::status_t last = status_list.back().message;
-  daemon.signal(SIGTERM);
-  EXPECT_EQ(daemon.waitFor(5s), 0) << test::readFile(dir.file("err"));
-  lcm.stop();
-
+  const LoopRun run = runLooping(dir, url, config);
+  const headingd::status_t& last = run.last_status;
   const auto* csv = findSource(last, "imu_csv");
   ASSERT_NE(csv, nullptr);
   const std::int64_t loops = counter(*csv, "loops_played");
@@ -138,22 +160,15 @@ TEST(DaemonLogLoop, ImuCsvLoopsOnOneUnbrokenTimeLine) {
     EXPECT_EQ(statusCounter(last, name), 0) << name;
   }
   // One time line: forward only, and at the seams one usual step (3.5 ms), not a gap.
-  const auto heading = lcm.heading();
-  ASSERT_GT(heading.size(), 100u);
-  std::int64_t largest_step_us = 0, went_back = 0;
-  for (std::size_t i = 1; i < heading.size(); ++i) {
-    const std::int64_t step = heading[i].message.sample_utime - heading[i - 1].message.sample_utime;
-    largest_step_us = std::max(largest_step_us, step);
-    went_back += step < 0;
-  }
-  EXPECT_EQ(went_back, 0);
+  ASSERT_GT(run.heading.size(), 100u);
+  const TimeLine time_line = headingTimeLine(run.heading);
+  EXPECT_EQ(time_line.went_back, 0);
   // HEADING goes out at a fixed rate of wall time, so at 10x about 0.1 s of file time apart
   // (more across a stall of this machine); a seam that skipped or repeated a loop would be
   // 3.5 s or more, or go back.
-  std::fprintf(stderr, "largest step between HEADING sample times: %.3f s\n", largest_step_us * 1e-6);
-  EXPECT_LT(largest_step_us, 2'000'000);
-  const double span_s = static_cast<double>(heading.back().message.sample_utime - heading.front().message.sample_utime) * 1e-6;
-  EXPECT_GT(span_s, 3 * 3.5);
+  std::fprintf(stderr, "largest step between HEADING sample times: %.3f s\n", time_line.largest_step_us * 1e-6);
+  EXPECT_LT(time_line.largest_step_us, 2'000'000);
+  EXPECT_GT(time_line.span_s, 3 * 3.5);
 }
 
 TEST(DaemonLogLoop, LoopWithARecordingIsAConfigurationError) {
