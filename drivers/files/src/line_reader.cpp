@@ -18,7 +18,7 @@ namespace {
 // Reads of 64 KiB: zlib copies a plain file straight into our buffer when a read is at least
 // its own buffer's size (so that is half of ours). Larger buffers read no faster: each of
 // their pages costs a page fault when first touched (about 10 us on a virtual machine, the
-// time of ~25 CSV rows), and 256 KiB buffers made a replay 3-4 % slower.
+// time of ~25 CSV rows), and 256 KiB buffers made a replay 3-9 % slower.
 constexpr std::size_t kBufferBytes = 1 << 16;
 constexpr unsigned kZlibBufferBytes = 1 << 15;
 
