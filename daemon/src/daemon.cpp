@@ -102,7 +102,14 @@ void Daemon::startRecorder() {
 void Daemon::start() {
   realtime_ = std::make_unique<RealtimeSettings>(config_.realtime);
   realtime_->lockMemory();
-  publisher_ = std::make_unique<LcmPublisher>(config_.lcm.url);
+  publisher_ = std::make_unique<LcmPublisher>(config_.lcm.url,
+                                              RepeatLimiter(config_.log.repeat_burst, config_.log.repeat_interval_s));
+  // Flushes between ticks ([daemon] publish = "imu") wake the sender; ticks it foresees.
+  publisher_->setWakeOnFlush(config_.publish_on_imu);
+  publisher_->start([this] {
+    pthread_setname_np(pthread_self(), "lcm-send");
+    realtime_->applyToLcmSenderThread();
+  });
   if (config_.lcm.url.rfind("udpm://", 0) == 0 && config_.lcm.url.find("ttl=0") == std::string::npos) {
     spdlog::warn("LCM URL {} has no ttl=0: messages may leave this machine", config_.lcm.url);
   }
@@ -155,6 +162,7 @@ void Daemon::stop() {
   }
   if (loop_ != nullptr) loop_->stop();
   if (loop_thread_.joinable()) loop_thread_.join();
+  if (publisher_ != nullptr) publisher_->stop();  // after its producer: sends what is queued
   if (nmea_out_ != nullptr) nmea_out_->stop();  // after its producer
   if (recorder_ != nullptr) recorder_->stop();  // after every producer
 }

@@ -80,6 +80,7 @@ void EstimatorLoop::run() {
   start_ns_ = monotonicNs();
   last_status_ns_ = start_ns_;
   std::int64_t deadline = start_ns_ + period_ns_;
+  publisher_.expectFlushAt(deadline);
   bool ready_sent = false;
   while (!stop_requested_.load(std::memory_order_relaxed)) {
     if (doorbell_ != nullptr) publishArrivalsUntil(deadline);
@@ -92,6 +93,7 @@ void EstimatorLoop::run() {
     const std::int64_t done = monotonicNs();
     recordTickTiming(wake - deadline, done - wake);
     deadline = nextDeadline(deadline, wake, done);
+    publisher_.expectFlushAt(deadline);  // the LCM sender looks then
     if (!ready_sent) {
       notifier_.ready();  // the loop runs and publishes: what Type=notify waits for
       ready_sent = true;
@@ -124,6 +126,7 @@ void EstimatorLoop::publishArrivalsUntil(std::int64_t deadline) {
     putInTimeOrder();
     feedPipeline(monotonicNs(), false, utime_us);
     if (consumed_this_tick_) publishEstimate(monotonicNs(), utime_us);
+    publisher_.flush();
   }
 }
 
@@ -133,6 +136,11 @@ void EstimatorLoop::recordTickTiming(std::int64_t jitter_ns, std::int64_t proces
     t->jitter.record(jitter_ns);
     t->processing.record(processing_ns);
   }
+  // Measured by the LCM sender thread as each estimate went out (lcm_publisher.hpp).
+  publisher_.drainSampleAges([this](std::int64_t age_ns) {
+    timing_total_.sample_age.record(age_ns);
+    timing_window_.sample_age.record(age_ns);
+  });
 }
 
 std::int64_t EstimatorLoop::nextDeadline(std::int64_t deadline, std::int64_t wake_ns, std::int64_t done_ns) {
@@ -167,8 +175,12 @@ void EstimatorLoop::tick(std::int64_t wake_ns, bool last_tick) {
   logRingDrops(wake_ns);
   const std::int64_t now = monotonicNs();
   publishEstimate(now, utime_us);
+  publisher_.flush();  // the estimate goes out while STATUS is put together
   // The last tick too, so that STATUS shows the sources finished and their final counters.
-  if (now - last_status_ns_ >= status_period_ns_ || last_tick) publishStatus(now, utime_us);
+  if (now - last_status_ns_ >= status_period_ns_ || last_tick) {
+    publishStatus(now, utime_us);
+    publisher_.flush();
+  }
 }
 
 void EstimatorLoop::drainRings() {
@@ -336,15 +348,12 @@ void EstimatorLoop::publishEstimate(std::int64_t now_ns, std::int64_t utime_us) 
   const core::HeadingOutput& out = pipeline_.output();
   fillHeading(heading_msg_, out, v, t);
   fillAttitude(attitude_msg_, out, pipeline_.estimator().ekf().covariance(), v, t);
-  const bool heading_ok = publisher_.publish(config_.lcm.heading_channel, heading_msg_);
+  // The sample's age is measured when HEADING has been sent, by the sender thread.
+  const std::int64_t fresh_arrival = consumed_this_tick_ ? imu_.last_used_arrival_ns : LcmPublisher::kNoSample;
+  const bool heading_ok = publisher_.publish(config_.lcm.heading_channel, heading_msg_, fresh_arrival);
   const bool attitude_ok = publisher_.publish(config_.lcm.attitude_channel, attitude_msg_);
   if (heading_ok && attitude_ok) ++published_.heading;
   sendNmea(v);
-  if (consumed_this_tick_) {
-    const std::int64_t age = monotonicNs() - imu_.last_used_arrival_ns;
-    timing_total_.sample_age.record(age);
-    timing_window_.sample_age.record(age);
-  }
 }
 
 void EstimatorLoop::publishStatus(std::int64_t now_ns, std::int64_t utime_us) {

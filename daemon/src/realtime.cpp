@@ -75,6 +75,8 @@ void RealtimeSettings::applyToEstimatorThread() {
   estimator_policy_.store(policy);
 }
 
+void RealtimeSettings::applyToLcmSenderThread() { setFifo(config_.sched_fifo_priority, "LCM sender"); }
+
 void RealtimeSettings::applyToDriverThread(const std::string& name) {
   setFifo(config_.driver_fifo_priority, "source " + name);
   int policy = SCHED_OTHER;

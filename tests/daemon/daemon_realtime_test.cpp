@@ -91,8 +91,11 @@ TEST(DaemonRealtime, DefaultsRunTheEstimatorAndDriverThreadsUnderFifoWithMemoryL
   ASSERT_EQ(threads.count("src:imu_csv"), 1u);
   EXPECT_EQ(threads.at("src:imu_csv").policy, SCHED_FIFO);
   EXPECT_EQ(threads.at("src:imu_csv").rt_priority, 55);
+  ASSERT_EQ(threads.count("lcm-send"), 1u) << "the LCM sender, at the estimator's priority";
+  EXPECT_EQ(threads.at("lcm-send").policy, SCHED_FIFO);
+  EXPECT_EQ(threads.at("lcm-send").rt_priority, 50);
   for (const auto& [name, s] : threads) {
-    if (name != "estimator" && name != "src:imu_csv") {
+    if (name != "estimator" && name != "src:imu_csv" && name != "lcm-send") {
       EXPECT_EQ(s.policy, SCHED_OTHER) << name;
     }
   }

@@ -118,8 +118,8 @@ cat <<REPORT
 headingd on BROAD trial 05 at ${speed}x real time, estimator at $rate Hz (publish = $publish), ${seconds} s, $sched$( [[ -n $cpu ]] && echo ", on CPU $cpu"), $load CPU hog(s) on $(nproc) CPUs
   ticks                $ticks, deadline misses $(json deadline_misses)
   tick jitter          median $(json tick_jitter_p50_us) us, p99 $(json tick_jitter_p99_us) us, max $(json tick_jitter_max_us) us   (wake-up minus deadline)
-  processing per tick  median $(json processing_p50_us) us, p99 $(json processing_p99_us) us, max $(json processing_max_us) us   (drain, estimate, publish)
-  sample age at publish median $(json sample_age_p50_us) us, p99 $(json sample_age_p99_us) us, max $(json sample_age_max_us) us   (newest IMU sample's arrival to publish)
+  processing per tick  median $(json processing_p50_us) us, p99 $(json processing_p99_us) us, max $(json processing_max_us) us   (drain, estimate, queue the messages)
+  sample age at publish median $(json sample_age_p50_us) us, p99 $(json sample_age_p99_us) us, max $(json sample_age_max_us) us   (newest IMU sample's arrival to its HEADING sent)
   messages             HEADING+ATTITUDE $(json heading_published), IMU $(json imu_published), STATUS $(json status_published), errors $(json publish_errors)
   rates                HEADING $(awk -v n="$(json heading_published)" -v s="$seconds" 'BEGIN { printf "%.1f", n / s }') Hz, IMU $(awk -v n="$(json imu_published)" -v s="$seconds" 'BEGIN { printf "%.1f", n / s }') Hz (over the ${seconds} s wall time, start-up included)
   resident memory      $(cat "$tmp/rss") kB while running (VmRSS, highest of 1 s samples); peak $(json max_rss_kb) kB (ru_maxrss)

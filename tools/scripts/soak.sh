@@ -171,6 +171,21 @@ for c in columns:
         grew = a is not None and b is not None and b > a
         print(f"{c}: {a:.0f} after warm-up, {b:.0f} at the end (capacity {cap:.0f})" + ("  GREW" if grew else ""))
         ok = ok and not grew
+        # Where it rose: the STATUS window of each rise, with that window's latest tick (a ring
+        # drained late holds what arrived meanwhile) and its IMU rate. A rise that the late tick
+        # does not explain would be a backlog building up.
+        warm_end_us = int(status[0]["log_utime"]) + warmup_s * 1e6
+        level = a
+        for m in status:
+            hw = num(m.get(c, ""))
+            if hw is None or int(m["log_utime"]) < warm_end_us or hw <= level:
+                continue
+            late_ms = num(m["tick_jitter_max_us"]) / 1000
+            arrived = num(m["imu_rate_hz"]) * late_ms / 1000
+            t_s = (int(m["log_utime"]) - int(status[0]["log_utime"])) / 1e6
+            print(f"  rose {level:.0f} -> {hw:.0f} at {t_s:.0f} s, in a window whose latest tick woke {late_ms:.1f} ms "
+                  f"late ({arrived:.0f} IMU samples arrive in that time; deadline misses so far {m['deadline_misses']})")
+            level = hw
 
 # Counters of trouble that grew after the warm-up; the others are progress and are listed
 # with their growth per simulated hour for reference.

@@ -4,7 +4,8 @@
 //   drain every ring → order the samples by time → HeadingPipeline (each IMU sample, then the
 //   GPS epochs at or before it: core::ImuThenGpsOrder, as headingd-replay does) → publish
 //   IMU and GPS as used, then HEADING and ATTITUDE once → STATUS every status period
-//   (status_builder.hpp says what is in it).
+//   (status_builder.hpp says what is in it). Publishing encodes and queues; the LCM sender
+//   thread sends (lcm_publisher.hpp), so a slow network stack does not hold the tick.
 // It measures its wake-up jitter, processing time, missed deadlines and the age of the
 // newest sample at publish, in fixed histograms (no allocation after start-up).
 //

@@ -1,7 +1,8 @@
 #pragma once
 // The [realtime] settings, applied where they belong: mlockall for the process before any
-// thread starts, SCHED_FIFO (and CPU affinity) for the estimator thread, SCHED_FIFO at a
-// priority of their own for the source threads that read at real-time pace. Each thread sets
+// thread starts, SCHED_FIFO (and CPU affinity) for the estimator thread, the same priority for
+// the LCM sender thread that sends what the estimator publishes, SCHED_FIFO at a priority of
+// their own for the source threads that read at real-time pace. Each thread sets
 // its own policy as it starts. What the system refuses (no CAP_SYS_NICE or RLIMIT_RTPRIO, a
 // cgroup without a real-time budget, no CAP_IPC_LOCK or RLIMIT_MEMLOCK) is said once, with
 // what would permit it, and the daemon runs on without it; STATUS reports what each thread
@@ -36,6 +37,9 @@ class RealtimeSettings {
   void lockMemory();
   // For the calling thread, the estimator's: sched_fifo_priority and cpu_affinity.
   void applyToEstimatorThread();
+  // For the calling thread, the LCM sender's: sched_fifo_priority, as the estimator whose
+  // messages it sends (not pinned: it runs beside the estimator where there is a second CPU).
+  void applyToLcmSenderThread();
   // For the calling thread, one of source `name`'s: driver_fifo_priority.
   void applyToDriverThread(const std::string& name);
   // Any thread.

@@ -35,8 +35,8 @@ struct ImuFreshness {
 // The estimator loop's timing: per run (the summary at exit) and per status period.
 struct TickTiming {
   LatencyHistogram jitter;      // actual wake-up minus deadline
-  LatencyHistogram processing;  // wake-up to end of publishing
-  LatencyHistogram sample_age;  // newest sample's age at publish
+  LatencyHistogram processing;  // wake-up to the tick's messages queued for the LCM sender
+  LatencyHistogram sample_age;  // newest sample's age when its HEADING was sent
 
   void clear() {
     jitter.clear();
