@@ -104,8 +104,8 @@ void Daemon::start() {
   realtime_->lockMemory();
   publisher_ = std::make_unique<LcmPublisher>(config_.lcm.url,
                                               RepeatLimiter(config_.log.repeat_burst, config_.log.repeat_interval_s));
-  // Flushes between ticks ([daemon] publish = "imu") wake the sender; ticks it foresees.
-  publisher_->setWakeOnFlush(config_.publish_on_imu);
+  // A HEADING per IMU sample is asked for its latency: sent at once, on the estimator thread.
+  publisher_->setSendInline(config_.publish_on_imu);
   publisher_->start([this] {
     pthread_setname_np(pthread_self(), "lcm-send");
     realtime_->applyToLcmSenderThread();

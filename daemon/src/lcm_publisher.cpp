@@ -20,7 +20,7 @@ LcmPublisher::LcmPublisher(const std::string& url, RepeatLimiter queue_full_log,
 }
 
 void LcmPublisher::start(std::function<void()> on_thread_start) {
-  if (sender_.joinable()) return;
+  if (send_inline_ || sender_.joinable()) return;
   stopping_.store(false);
   sender_ = std::thread([this, hook = std::move(on_thread_start)] {
     if (hook) hook();
@@ -59,12 +59,8 @@ void LcmPublisher::sendLoop() {
       sendQueued();  // what was queued before stop() was asked
       return;
     }
-    // Returns at once if a flush came since `seen`; early if one rings.
-    if (wake_on_flush_) {
-      doorbell_.waitWhile(seen);
-    } else {
-      doorbell_.waitWhile(seen, toTimespec(nextLook(monotonicNs())));
-    }
+    // Returns at once if a flush came since `seen`, early if stop() rings.
+    doorbell_.waitWhile(seen, toTimespec(nextLook(monotonicNs())));
   }
 }
 
@@ -83,14 +79,20 @@ void LcmPublisher::sendQueued() {
     queue_.pop(reinterpret_cast<std::uint8_t*>(channel_.data()), header.channel_size);
     if (payload_.size() < header.payload_size) payload_.resize(header.payload_size);
     queue_.pop(payload_.data(), header.payload_size);
-    if (lcm_.publish(channel_, payload_.data(), header.payload_size) == 0) {
-      published_.fetch_add(1, std::memory_order_relaxed);
-    } else {
-      fail();
-    }
-    // A full ring only loses a figure, never a message.
-    if (header.sample_arrival_ns != kNoSample) sample_ages_.push(monotonicNs() - header.sample_arrival_ns);
+    send(channel_, payload_.data(), header);
   }
+}
+
+bool LcmPublisher::send(const std::string& channel, const std::uint8_t* payload, const RecordHeader& header) {
+  const bool sent = lcm_.publish(channel, payload, header.payload_size) == 0;
+  if (sent) {
+    published_.fetch_add(1, std::memory_order_relaxed);
+  } else {
+    fail();
+  }
+  // A full ring only loses a figure, never a message.
+  if (header.sample_arrival_ns != kNoSample) sample_ages_.push(monotonicNs() - header.sample_arrival_ns);
+  return sent;
 }
 
 }  // namespace headingd::daemon

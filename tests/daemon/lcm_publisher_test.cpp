@@ -123,14 +123,15 @@ TEST(LcmPublisher, StopSendsEverythingQueuedEvenWithoutAFlush) {
 
 // Every way the sender can learn of a flush delivers it: a tick that comes when it was
 // announced, one that comes late (past the sender's short-poll window), a flush with no tick
-// announced at all, and flushes that wake the sender ([daemon] publish = "imu").
-TEST(LcmPublisher, EveryFlushGoesOutOnTimeLateUnannouncedOrRung) {
-  for (const bool wake_on_flush : {false, true}) {
-    SCOPED_TRACE(wake_on_flush ? "wake on flush" : "time-triggered");
+// announced at all; and the same when sending inline ([daemon] publish = "imu").
+TEST(LcmPublisher, EveryFlushGoesOutOnTimeLateUnannouncedOrInline) {
+  for (const bool send_inline : {false, true}) {
+    SCOPED_TRACE(send_inline ? "inline" : "time-triggered sender thread");
     Subscriber subscriber;
     LcmPublisher publisher(kUrl, logLimit());
-    publisher.setWakeOnFlush(wake_on_flush);
-    publisher.start();
+    publisher.setSendInline(send_inline);
+    std::thread::id sender_thread;
+    publisher.start([&] { sender_thread = std::this_thread::get_id(); });
     int sent = 0;
     const auto tick = [&](std::chrono::microseconds after_announced, std::chrono::microseconds announced_in) {
       const std::int64_t due = monotonicNs() + announced_in.count() * 1000;
@@ -147,8 +148,12 @@ TEST(LcmPublisher, EveryFlushGoesOutOnTimeLateUnannouncedOrRung) {
       publisher.flush();
       std::this_thread::sleep_for(std::chrono::milliseconds(3));
     }
+    if (send_inline) {
+      EXPECT_EQ(publisher.published(), static_cast<std::uint64_t>(sent)) << "sent as published";
+    }
     const std::vector<std::int64_t> got = subscriber.waitFor(static_cast<std::size_t>(sent));
     publisher.stop();
+    EXPECT_EQ(sender_thread == std::thread::id(), send_inline) << "a sender thread only when not inline";
     ASSERT_EQ(got.size(), static_cast<std::size_t>(sent));
     for (int i = 0; i < sent; ++i) EXPECT_EQ(got[static_cast<std::size_t>(i)], i);
   }

@@ -30,10 +30,6 @@ class Doorbell {
   void waitWhile(std::uint32_t seen, const timespec& deadline) noexcept {
     syscall(SYS_futex, word(), FUTEX_WAIT_BITSET_PRIVATE, seen, &deadline, nullptr, FUTEX_BITSET_MATCH_ANY);
   }
-  // The same without a deadline. May return early (a signal): callers check again.
-  void waitWhile(std::uint32_t seen) noexcept {
-    syscall(SYS_futex, word(), FUTEX_WAIT_PRIVATE, seen, nullptr, nullptr, 0);
-  }
 
  private:
   std::uint32_t* word() noexcept { return reinterpret_cast<std::uint32_t*>(&count_); }

@@ -13,8 +13,12 @@
 // when its next tick is due (expectFlushAt) and flush() only bumps a counter; the sender
 // sleeps until that deadline on its own timer, then looks every kPollNs until the tick's
 // messages are there (a tick takes 20-50 µs) and sends them. That adds at most about kPollNs
-// to a message's age. When flushes do not follow a schedule ([daemon] publish = "imu"),
-// setWakeOnFlush(true) makes every flush wake the sender at once.
+// to a message's age.
+//
+// When flushes do not follow a schedule ([daemon] publish = "imu": a HEADING as each IMU
+// sample arrives) the consumer wants the lowest latency, and waking a sender would add its
+// wake-up (about 40 µs to the age's median here): setSendInline(true) then sends each message
+// on the caller's thread as it is published, as LCM itself would.
 //
 // Nothing is lost silently: a message that cannot be encoded, that finds the queue full (the
 // sender stalled for about a second of traffic), or that LCM refuses to send is counted in
@@ -52,7 +56,8 @@ class LcmPublisher {
   LcmPublisher(const LcmPublisher&) = delete;
   LcmPublisher& operator=(const LcmPublisher&) = delete;
 
-  // Starts the sender thread; it runs `on_thread_start` first (name, scheduling).
+  // Starts the sender thread; it runs `on_thread_start` first (name, scheduling). No thread
+  // when sending inline.
   void start(std::function<void()> on_thread_start = {});
   // Sends everything queued, then ends the sender thread. Idempotent.
   void stop();
@@ -70,22 +75,18 @@ class LcmPublisher {
                               sample_arrival_ns};
     std::memcpy(record_.data(), &header, sizeof header);
     std::memcpy(record_.data() + sizeof header, channel.data(), channel.size());
-    if (message.encode(record_.data() + sizeof header + channel.size(), 0, size) != size) return fail();
+    std::uint8_t* payload = record_.data() + sizeof header + channel.size();
+    if (message.encode(payload, 0, size) != size) return fail();
+    if (send_inline_) return send(channel, payload, header);
     return enqueue(total, channel);
   }
   // What was queued since the last flush may go out. Once a tick, after the estimate.
-  void flush() {
-    if (wake_on_flush_) {
-      doorbell_.ring();
-    } else {
-      doorbell_.post();
-    }
-  }
+  void flush() { doorbell_.post(); }
   // The producer's next flush comes soon after `deadline_ns` (CLOCK_MONOTONIC): the sender
   // looks then. Any thread.
   void expectFlushAt(std::int64_t deadline_ns) { next_flush_ns_.store(deadline_ns, std::memory_order_release); }
-  // Before start(): every flush wakes the sender (flushes at unforeseeable times).
-  void setWakeOnFlush(bool wake) { wake_on_flush_ = wake; }
+  // Before start(): each message is sent as it is published, on the caller's thread.
+  void setSendInline(bool send_inline) { send_inline_ = send_inline; }
 
   // The sender's timing when it is time-triggered: how often it looks once a tick is due,
   // for how long, and how often after that (a late tick, or no loop running).
@@ -116,6 +117,8 @@ class LcmPublisher {
   }
   void sendLoop();
   void sendQueued();
+  // Hands one encoded message to LCM and counts it; measures the sample's age if it has one.
+  bool send(const std::string& channel, const std::uint8_t* payload, const RecordHeader& header);
   std::int64_t nextLook(std::int64_t now_ns) const;
 
   lcm::LCM lcm_;
@@ -125,7 +128,7 @@ class LcmPublisher {
   // Ages flow back; a tick drains them, so 1024 is dozens of ticks' worth.
   boost::lockfree::spsc_queue<std::int64_t, boost::lockfree::capacity<1024>> sample_ages_;
   Doorbell doorbell_;
-  bool wake_on_flush_ = false;
+  bool send_inline_ = false;
   std::atomic<std::int64_t> next_flush_ns_{0};  // 0: not known yet
   std::atomic<bool> stopping_{false};
   std::thread sender_;
