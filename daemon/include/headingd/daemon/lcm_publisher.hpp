@@ -62,8 +62,8 @@ class LcmPublisher {
   // Sends everything queued, then ends the sender thread. Idempotent.
   void stop();
 
-  // One producer thread. True when the message is queued; false (and counted) when it
-  // cannot be encoded or the queue is full. `sample_arrival_ns`: the newest IMU sample's
+  // One producer thread. True when the message is queued (sent, inline); false (and counted)
+  // when it cannot be encoded, the queue is full or, inline, LCM refused it. `sample_arrival_ns`: the newest IMU sample's
   // arrival (CLOCK_MONOTONIC), whose age at send is measured; kNoSample for none.
   template <class Message>
   bool publish(const std::string& channel, const Message& message, std::int64_t sample_arrival_ns = kNoSample) {
@@ -80,7 +80,7 @@ class LcmPublisher {
     if (send_inline_) return send(channel, payload, header);
     return enqueue(total, channel);
   }
-  // What was queued since the last flush may go out. Once a tick, after the estimate.
+  // What was queued since the last flush may go out: after a tick's messages.
   void flush() { doorbell_.post(); }
   // The producer's next flush comes soon after `deadline_ns` (CLOCK_MONOTONIC): the sender
   // looks then. Any thread.
