@@ -19,10 +19,13 @@ void setCounter(std::vector<headingd::counter_t>& counters, std::size_t i, std::
   counters[i].value = static_cast<std::int64_t>(value);
 }
 
-void fillRing(ring_status_t& r, const std::string& name, const RingStats& st) {
-  if (r.name != name) r.name = name;
+template <class Ring>
+void fillRing(ring_status_t& r, Ring& ring) {
+  const RingStats st = ring.stats();
+  if (r.name != ring.name()) r.name = ring.name();
   r.capacity = static_cast<std::int32_t>(st.capacity);
   r.high_water = static_cast<std::int32_t>(st.high_water);
+  r.window_high_water = static_cast<std::int32_t>(ring.takeWindowHighWater());
   r.pushed = static_cast<std::int64_t>(st.pushed);
   r.dropped = static_cast<std::int64_t>(st.dropped);
 }
@@ -72,8 +75,8 @@ void fillSourceStatus(status_t& m, const std::vector<Source*>& sources, std::vec
 void fillRingStatus(status_t& m, const std::vector<SampleRing<ImuRingEntry>*>& imu_rings,
                     const std::vector<SampleRing<GpsRingEntry>*>& gps_rings) {
   std::size_t i = 0;
-  for (const auto* ring : imu_rings) fillRing(m.rings[i++], ring->name(), ring->stats());
-  for (const auto* ring : gps_rings) fillRing(m.rings[i++], ring->name(), ring->stats());
+  for (auto* ring : imu_rings) fillRing(m.rings[i++], *ring);
+  for (auto* ring : gps_rings) fillRing(m.rings[i++], *ring);
 }
 
 TickTimingFigures tickTimingFigures(const TickTiming& t) {

@@ -113,5 +113,23 @@ TEST(SampleRing, DrainTakesOnlyWhatWasThereAtTheStart) {
   EXPECT_EQ(ring.drain([](const Item&) {}), 3u);
 }
 
+TEST(SampleRing, WindowHighWaterIsTheMostWaitingAtADrainSinceItWasLastTaken) {
+  SampleRing<Item> ring("test", 16);
+  const auto pushAndDrain = [&ring](std::uint64_t n) {
+    for (std::uint64_t i = 0; i < n; ++i) ring.push(Item{i, {}});
+    ring.drain([](const Item&) {});
+  };
+  EXPECT_EQ(ring.takeWindowHighWater(), 0u);  // no drain yet
+  pushAndDrain(5);
+  pushAndDrain(9);
+  pushAndDrain(2);
+  EXPECT_EQ(ring.takeWindowHighWater(), 9u);
+  // A new window: the 9 stays in high_water (since start) only.
+  pushAndDrain(3);
+  EXPECT_EQ(ring.takeWindowHighWater(), 3u);
+  EXPECT_EQ(ring.takeWindowHighWater(), 0u);
+  EXPECT_EQ(ring.stats().high_water, 9u);
+}
+
 }  // namespace
 }  // namespace headingd::daemon

@@ -231,7 +231,7 @@ inline headingd::status_t awkwardStatus(AwkwardValues& v, const std::vector<std:
   m.num_sources = static_cast<std::int32_t>(m.sources.size());
   headingd::ring_status_t ring;
   ring.name = "imu";
-  v.fill(ring.capacity, ring.high_water, ring.pushed, ring.dropped);
+  v.fill(ring.capacity, ring.high_water, ring.window_high_water, ring.pushed, ring.dropped);
   m.rings = {ring};
   m.num_rings = 1;
   v.fill(m.rate_hz, m.ticks, m.deadline_misses, m.tick_jitter_p50_us, m.tick_jitter_p99_us, m.tick_jitter_max_us,

@@ -91,7 +91,7 @@ std::string fixed(double v, int digits) {
 
 void expectLikePrintf(double v) {
   for (int digits = 0; digits <= 9; ++digits) {
-    char format[8];
+    char format[16];
     std::snprintf(format, sizeof format, "%%.%df", digits);
     EXPECT_EQ(fixed(v, digits), printed(format, v)) << v;
   }

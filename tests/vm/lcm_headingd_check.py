@@ -71,8 +71,8 @@ def status_schedule(payload):
             r.string()
         for _ in range(r.take("i")):
             r.string(), r.take("q")
-    for _ in range(r.take("i")):  # ring_status_t: name, capacity, high_water, pushed, dropped
-        r.string(), r.take("i"), r.take("i"), r.take("q"), r.take("q")
+    for _ in range(r.take("i")):  # ring_status_t: name, capacity, high_water, window_high_water, pushed, dropped
+        r.string(), r.take("i"), r.take("i"), r.take("i"), r.take("q"), r.take("q")
     rate_hz = r.take("d")
     ticks, misses = r.take("q"), r.take("q")
     for _ in range(11):  # jitter, processing, sample age percentiles; message rates

@@ -3,13 +3,24 @@
 # (default 30 min at 20x: 10 simulated hours) and checks that nothing accumulates. Every
 # SOAK_SAMPLE_S seconds (default 10) it samples the daemon's resident memory (VmRSS of
 # /proc/PID/status); lcm-logger records every STATUS message (rings' high-water marks and
-# drops, deadline misses, every source and estimator counter). At the end the two are joined
-# into one CSV (a row per sample: time, RSS, the latest STATUS's fields) and it prints:
+# drops, deadline misses, every source and estimator counter); stall-probe.py writes down
+# each moment the machine could not run even a SCHED_FIFO 99 thread for 2 ms or more. At the
+# end the two are joined into one CSV (a row per sample: time, RSS, the latest STATUS's
+# fields) and it prints:
 #   - RSS after the warm-up (the first SOAK_WARMUP_S seconds, default 120): min, max, spread
 #     (must stay within +-1 MB, i.e. a spread of at most 2 MB);
-#   - each ring's high-water mark at the end of the warm-up and at the end (must not grow);
+#   - the machine's stalls seen by the probe;
+#   - each ring's high-water mark at the end of the warm-up and at the end, and each rise:
+#     a rise must come with a stall of the machine (the probe saw at least half the time the
+#     ring's content took to arrive beyond one tick period, in that STATUS window or the one
+#     before); and each ring's window_high_water (most waiting at a tick, per STATUS window)
+#     in each third of the run: its median must not grow (by more than 25 % and 3 samples),
+#     which a backlog building up would do;
 #   - the counters of trouble (drops, misses, rejections, errors, time faults) that grew after
-#     the warm-up: those drift (none expected).
+#     the warm-up: those drift (none expected), except deadline misses that each come with a
+#     stall of the machine as long as the tick's lateness (at least half of it, as above).
+# Without the right to real-time scheduling the probe cannot tell a stall of the machine from
+# one of the scheduler, and no stall excuses anything.
 # Exit status 0 when all three hold, 1 otherwise, 2 on bad usage or a missing tool.
 #
 # The demo capture (config/demo: the candump log of the CAN IMU frames and the NMEA log) is
@@ -45,10 +56,11 @@ done
 command -v lcm-logger >/dev/null || { echo "soak: lcm-logger missing (apt-get install liblcm-bin)" >&2; exit 2; }
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/headingd-soak-work.XXXXXX")
-daemon_pid= logger_pid=
+daemon_pid= logger_pid= probe_pid=
 cleanup() {
   [[ -n "$daemon_pid" ]] && kill "$daemon_pid" 2>/dev/null || true
   [[ -n "$logger_pid" ]] && kill "$logger_pid" 2>/dev/null || true
+  [[ -n "$probe_pid" ]] && kill "$probe_pid" 2>/dev/null || true
   rm -rf "$work"
 }
 trap cleanup EXIT
@@ -77,6 +89,9 @@ TOML
 
 lcm-logger --quiet --channel=STATUS --lcm-url="$url" "$work/status.lcm" >/dev/null &
 logger_pid=$!
+# The machine's own stalls, to tell them from the daemon's (stall-probe.py).
+"$repo/tools/scripts/stall-probe.py" "$out/stalls.csv" 2 &
+probe_pid=$!
 sleep 0.5
 "$headingd" --config "$work/soak.toml" >"$out/headingd.out" 2>"$out/headingd.log" &
 daemon_pid=$!
@@ -104,12 +119,16 @@ sleep 1
 kill -INT "$logger_pid"
 wait "$logger_pid" || true
 logger_pid=
+kill -TERM "$probe_pid"
+wait "$probe_pid" || true
+probe_pid=
 "$export_tool" "$work/status.lcm" --out-dir "$out" --channel STATUS >/dev/null
 
-python3 - "$out/rss.csv" "$out/STATUS.csv" "$out/soak.csv" "$warmup_s" "$speed" <<'PY'
-import csv, re, sys
+python3 - "$out/rss.csv" "$out/STATUS.csv" "$out/soak.csv" "$warmup_s" "$speed" "$out/stalls.csv" <<'PY'
+import bisect, csv, re, statistics, sys
 
 rss_path, status_path, out_path, warmup_s, speed = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5])
+stalls_path = sys.argv[6]
 rss = list(csv.DictReader(open(rss_path)))
 status = list(csv.DictReader(open(status_path)))
 if not rss or not status:
@@ -163,29 +182,76 @@ if spread > 2048:
     ok = False
     print("  FAIL: RSS not flat within +-1 MB")
 
-# High-water marks: at the end of the warm-up and at the end.
+# The machine's stalls (stall-probe.py): when even a SCHED_FIFO 99 thread could not run.
+probe_lines = open(stalls_path).read().splitlines()
+probe_rt = not (probe_lines and probe_lines[0].startswith("# not real-time"))
+stalls = sorted((int(r["wall_utime_us"]), float(r["late_ms"]))
+                for r in csv.DictReader(l for l in probe_lines if not l.startswith("#")))
+stall_t = [t for t, _ in stalls]
+warm_end_us = int(status[0]["log_utime"]) + warmup_s * 1e6
+period_ms = 1000 / num(status[-1]["rate_hz"])
+
+def stall_in_window(k):
+    """The longest stall the probe saw in STATUS window k or the one before it (ms)."""
+    lo = int(status[k - 2]["log_utime"]) if k >= 2 else 0
+    hi = int(status[k]["log_utime"])
+    return max((ms for _, ms in stalls[bisect.bisect_right(stall_t, lo):bisect.bisect_right(stall_t, hi)]), default=0.0)
+
+def host_stall(k, needed_ms):
+    """True when the probe saw a stall at least half of `needed_ms` (its 1 ms sleeps and the
+    two threads' stalls adding up leave that margin) around window k: the machine's doing."""
+    seen = stall_in_window(k)
+    return probe_rt and seen >= max(2.0, 0.5 * needed_ms), seen
+
+windows = [k for k, m in enumerate(status) if int(m["log_utime"]) >= warm_end_us]
+long_stalls = [ms for t, ms in stalls if t >= warm_end_us]
+print(f"machine stalls after the warm-up (stall-probe.py{'' if probe_rt else ', NOT real-time: no stall excuses anything'}): "
+      f"{len(long_stalls)} of 2 ms or more, {sum(ms >= 10 for ms in long_stalls)} of 10 ms or more, longest "
+      f"{max(long_stalls, default=0):.1f} ms; in {sum(stall_in_window(k) >= 2 for k in windows)} of {len(windows)} STATUS windows "
+      f"(a window and the one before it)")
+
+# Rings. high_water is the most ever waiting, so it also keeps the worst stall the machine
+# ever dealt the daemon; a backlog building up shows in window_high_water (most waiting at a
+# tick in each STATUS window) rising from the first to the last third of the run.
 for c in columns:
     if c.startswith("rings.") and c.endswith(".high_water"):
         a, b = num(after[0][idx[c]]), num(after[-1][idx[c]])
-        cap = num(after[-1][idx[c.replace(".high_water", ".capacity")]]) if c.replace(".high_water", ".capacity") in idx else None
-        grew = a is not None and b is not None and b > a
-        print(f"{c}: {a:.0f} after warm-up, {b:.0f} at the end (capacity {cap:.0f})" + ("  GREW" if grew else ""))
-        ok = ok and not grew
-        # Where it rose: the STATUS window of each rise, with that window's latest tick (a ring
-        # drained late holds what arrived meanwhile) and its IMU rate. A rise that the late tick
-        # does not explain would be a backlog building up.
-        warm_end_us = int(status[0]["log_utime"]) + warmup_s * 1e6
+        cap = num(after[-1][idx[c.replace(".high_water", ".capacity")]])
+        print(f"{c}: {a:.0f} after warm-up, {b:.0f} at the end (capacity {cap:.0f})" + ("  GREW" if b > a else ""))
+        # Each rise, with its window's latest tick (a ring drained late holds what arrived
+        # meanwhile) and what the probe saw: time the ring's content took to arrive beyond one
+        # tick period must have been a stall of the machine.
         level = a
-        for m in status:
+        for k in windows:
+            m = status[k]
             hw = num(m.get(c, ""))
-            if hw is None or int(m["log_utime"]) < warm_end_us or hw <= level:
+            if hw is None or hw <= level:
                 continue
             late_ms = num(m["tick_jitter_max_us"]) / 1000
-            arrived = num(m["imu_rate_hz"]) * late_ms / 1000
+            rate = max(num(m["imu_rate_hz"]), 1.0)
+            needed_ms = 1000 * hw / rate - period_ms
+            host, seen = host_stall(k, needed_ms)
             t_s = (int(m["log_utime"]) - int(status[0]["log_utime"])) / 1e6
-            print(f"  rose {level:.0f} -> {hw:.0f} at {t_s:.0f} s, in a window whose latest tick woke {late_ms:.1f} ms "
-                  f"late ({arrived:.0f} IMU samples arrive in that time; deadline misses so far {m['deadline_misses']})")
+            print(f"  rose {level:.0f} -> {hw:.0f} at {t_s:.0f} s: {hw:.0f} samples are {1000 * hw / rate:.1f} ms of data; "
+                  f"latest tick {late_ms:.1f} ms late; the probe saw a {seen:.1f} ms stall: "
+                  + ("the machine's" if host else "NOT EXPLAINED by a stall of the machine"))
+            ok = ok and host
             level = hw
+        wc = c.replace(".high_water", ".window_high_water")
+        if wc not in status[0]:
+            continue
+        peaks = [num(status[k][wc]) for k in windows if num(status[k][wc]) is not None]
+        thirds = [peaks[i * len(peaks) // 3:(i + 1) * len(peaks) // 3] for i in range(3)]
+        if min(len(t) for t in thirds) == 0:
+            continue
+        def fig(t):
+            t = sorted(t)
+            return f"median {statistics.median(t):.0f}, p99 {t[min(len(t) - 1, int(0.99 * len(t)))]:.0f}, max {t[-1]:.0f}"
+        print(f"  {wc} in each third after the warm-up: " + "; ".join(fig(t) for t in thirds))
+        first_median, last_median = statistics.median(thirds[0]), statistics.median(thirds[2])
+        if last_median > max(first_median * 1.25, first_median + 3):
+            ok = False
+            print(f"  FAIL: a backlog builds up (median {first_median:.0f} -> {last_median:.0f})")
 
 # Counters of trouble that grew after the warm-up; the others are progress and are listed
 # with their growth per simulated hour for reference.
@@ -208,6 +274,14 @@ for c in columns:
             if c == "deadline_misses":  # a share of the ticks: load on the machine shows here
                 ticks = num(after[-1][idx["ticks"]]) - num(after[0][idx["ticks"]])
                 share = f" ({100 * (b - a) / max(ticks, 1):.2f} % of the {ticks:.0f} ticks)"
+                # A miss is a tick held off for about a period: each window with one must have
+                # had a stall of the machine that long.
+                unexplained = [k for k in windows if num(status[k]["deadline_misses"]) > num(status[k - 1]["deadline_misses"])
+                               and not host_stall(k, max(period_ms, num(status[k]["tick_jitter_max_us"]) / 1000))[0]]
+                share += f"; in windows without a stall of the machine: {len(unexplained)}"
+                if not unexplained:
+                    print(f"{c}: {a:.0f} -> {b:.0f}{share}: each with a stall of the machine")
+                    continue
             drifting.append(f"{c}: {a:.0f} -> {b:.0f}{share}")
     elif b > a and sim_hours > 0:
         progress.append(f"{c} +{(b - a) / sim_hours:.0f}/h")

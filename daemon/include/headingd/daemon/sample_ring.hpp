@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "headingd/daemon/doorbell.hpp"
 
@@ -51,6 +52,9 @@ class SampleRing {
   template <class Consume>
   std::size_t drain(Consume&& consume) {
     const std::size_t available = queue_.read_available();
+    // Only the producer adds between two drains, so what waits now is the most that waited
+    // since the last drain.
+    window_high_water_ = std::max(window_high_water_, available);
     std::size_t n = 0;
     for (; n < available; ++n) {
       const Entry* front = &queue_.front();
@@ -59,6 +63,11 @@ class SampleRing {
     }
     return n;
   }
+
+  // Consumer thread only: the most entries waiting at a drain since the last call (0 if none
+  // since), then starts a new window. Unlike high_water (since start), it shows whether a
+  // backlog is building now: STATUS's window_high_water.
+  std::size_t takeWindowHighWater() noexcept { return std::exchange(window_high_water_, 0); }
 
   // Any thread: a snapshot of the counters (each exact, not taken at one instant together).
   RingStats stats() const {
@@ -78,6 +87,7 @@ class SampleRing {
   std::atomic<std::uint64_t> pushed_{0};
   std::atomic<std::uint64_t> dropped_{0};
   std::atomic<std::size_t> high_water_{0};
+  std::size_t window_high_water_ = 0;  // consumer's
 };
 
 }  // namespace headingd::daemon

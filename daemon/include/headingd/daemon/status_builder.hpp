@@ -77,7 +77,8 @@ const char* healthState(const ImuFreshness& imu, bool estimate_valid, std::int64
 
 // Each source's state, last error and counters, refreshed through `reports` (one per source).
 void fillSourceStatus(status_t& m, const std::vector<Source*>& sources, std::vector<SourceReport>& reports);
-// Capacity, high-water mark, pushes and drops of each ring, the IMU rings first.
+// Capacity, high-water marks (since start, and since the last STATUS: read and reset here, so
+// the rings' consumer thread only), pushes and drops of each ring, the IMU rings first.
 void fillRingStatus(status_t& m, const std::vector<SampleRing<ImuRingEntry>*>& imu_rings,
                     const std::vector<SampleRing<GpsRingEntry>*>& gps_rings);
 // The scheduling policies the estimator and driver threads got and whether memory is locked.

@@ -65,7 +65,7 @@ void describeFields(const headingd::counter_t& m, W& w) {
 
 template <class W>
 void describeFields(const headingd::ring_status_t& m, W& w) {
-  HEADINGD_LCM_FIELDS(name, capacity, high_water, pushed, dropped);
+  HEADINGD_LCM_FIELDS(name, capacity, high_water, window_high_water, pushed, dropped);
 }
 
 template <class W>
