@@ -100,12 +100,12 @@ for r in stall_rows:
 trains = []  # (time, ms lost in the 100 ms up to it), all CPUs
 for events in by_cpu.values():
     events.sort()
-    first, lost = 0, 0.0
+    oldest, lost = 0, 0.0  # the first wake within the span, and the sum since it
     for t, ms in events:
         lost += ms
-        while events[first][0] < t - TRAIN_US:
-            lost -= events[first][1]
-            first += 1
+        while events[oldest][0] < t - TRAIN_US:
+            lost -= events[oldest][1]
+            oldest += 1
         trains.append((t, lost))
 trains.sort()
 train_t = [t for t, _ in trains]
@@ -128,8 +128,12 @@ late_wakes = [ms for t, _, ms in stall_rows if t >= warm_end_us]
 half_period = sum(lost_around(k) >= max(2.0, 0.5 * period_ms) for k in windows)
 print(f"machine stalls after the warm-up (stall-probe.py{'' if probe_rt else ', NOT real-time: no stall excuses anything'}): "
       f"{len(late_wakes)} wakes 2 ms or more late, {sum(ms >= 10 for ms in late_wakes)} of them 10 ms or more, the "
-      f"latest {max(late_wakes, default=0):.1f} ms; {half_period} of {len(windows)} STATUS windows lost half a tick period "
+      f"longest {max(late_wakes, default=0):.1f} ms; {half_period} of {len(windows)} STATUS windows lost half a tick period "
       f"({0.5 * period_ms:.1f} ms) or more within 100 ms on a CPU (around the window: it and the one before)")
+
+def peak_figures(peaks):
+    t = sorted(peaks)
+    return f"median {statistics.median(t):.0f}, p99 {t[min(len(t) - 1, int(0.99 * len(t)))]:.0f}, max {t[-1]:.0f}"
 
 # Rings. high_water is the most ever waiting, so it also keeps the worst stall the machine
 # ever dealt the daemon; a backlog building up shows in window_high_water (most waiting at a
@@ -165,10 +169,7 @@ for c in columns:
         thirds = [peaks[i * len(peaks) // 3:(i + 1) * len(peaks) // 3] for i in range(3)]
         if min(len(t) for t in thirds) == 0:
             continue
-        def fig(t):
-            t = sorted(t)
-            return f"median {statistics.median(t):.0f}, p99 {t[min(len(t) - 1, int(0.99 * len(t)))]:.0f}, max {t[-1]:.0f}"
-        print(f"  {wc} in each third after the warm-up: " + "; ".join(fig(t) for t in thirds))
+        print(f"  {wc} in each third after the warm-up: " + "; ".join(peak_figures(t) for t in thirds))
         first_median, last_median = statistics.median(thirds[0]), statistics.median(thirds[2])
         if last_median > max(first_median * 1.25, first_median + 3):
             ok = False
@@ -188,7 +189,6 @@ for c in columns:
     a, b = num(after[0][idx[c]]), num(after[-1][idx[c]])
     if a is None or b is None:
         continue
-    name = c.split(".")[-1] if not c.endswith(".value") else c.split(".")[-2]
     if trouble.search(c):
         if b > a:
             share = ""
