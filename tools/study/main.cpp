@@ -4,7 +4,9 @@
 //   headingd-study broad [--dir DIR] [--rate HZ ...] [--set key=value ...] [--config TOML]
 //   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--set ...]
 //   ... --trace FILE  (one run: per-sample diagnostics as CSV)
+//   ... --anchors DIR (VQF and Fusion beside headingd: the drivers built by ../shared/anchors/build.sh)
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +24,7 @@
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "headingd/sim/simulation.hpp"
+#include "headingd/study/anchors.hpp"
 #include "headingd/study/resample.hpp"
 #include "headingd/study/scoring.hpp"
 
@@ -101,14 +104,46 @@ struct Row {
   double rate_hz = 0.0;
   study::RunScore score;
   study::EpisodeScore episode;
+  std::vector<study::RunScore> anchors;  // one per --anchors filter, in findAnchors' order
 };
+
+// One filter's figures in the side-by-side table: plain total, then fitted total / heading /
+// inclination (constant earth and body rotations fitted for each filter alone).
+void printSideBySide(const std::vector<Row>& rows, const std::vector<double>& rates,
+                     const std::vector<study::AnchorFilter>& anchors) {
+  std::vector<std::string> names = {"headingd"};
+  for (const auto& a : anchors) names.push_back(a.name);
+  std::printf("\nside by side (deg): per filter plain total | fitted total / heading / inclination\n");
+  std::printf("%-46s %7s", "run", "Hz");
+  for (const auto& n : names) std::printf(" | %-27s", n.c_str());
+  std::printf("\n");
+  for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+    std::vector<std::array<double, 4>> sums(names.size(), {0, 0, 0, 0});
+    std::size_t n = 0;
+    for (std::size_t job = ri; job < rows.size(); job += rates.size(), ++n) {
+      const Row& row = rows[job];
+      std::printf("%-46s %7.1f", row.name.c_str(), row.rate_hz);
+      for (std::size_t f = 0; f < names.size(); ++f) {
+        const study::RunScore& s = f == 0 ? row.score : row.anchors[f - 1];
+        const std::array<double, 4> v = {s.rmse.total_rad * kDeg, s.aligned_rmse.total_rad * kDeg,
+                                         s.aligned_rmse.heading_rad * kDeg, s.aligned_rmse.inclination_rad * kDeg};
+        std::printf(" | %6.2f %6.2f/%6.2f/%6.2f", v[0], v[1], v[2], v[3]);
+        for (int k = 0; k < 4; ++k) sums[f][k] += v[k];
+      }
+      std::printf("\n");
+    }
+    std::printf("SIDE-MEAN %-36s %7.1f", "", rates[ri]);
+    for (const auto& s : sums) std::printf(" | %6.2f %6.2f/%6.2f/%6.2f", s[0] / n, s[1] / n, s[2] / n, s[3] / n);
+    std::printf("\n");
+  }
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"The estimator on BROAD trials and simulated motions at any sample rate, scored."};
   app.require_subcommand(1);
-  std::string config, trace;
+  std::string config, trace, anchors_dir;
   std::vector<std::string> sets;
   std::vector<double> rates;
   auto common = [&](CLI::App* c) {
@@ -116,6 +151,9 @@ int main(int argc, char** argv) {
     c->add_option("--set", sets, "an [estimator] key = value, e.g. --set 'gyro_noise_rad_s = 0.03' (repeatable)");
     c->add_option("--rate", rates, "resample to these rates in Hz (repeatable; none: the recording's own)");
     c->add_option("--trace", trace, "write per-sample diagnostics of the first run to this CSV");
+    c->add_option("--anchors", anchors_dir,
+                  "folder of the comparator drivers (anchor_vqf, anchor_fusion; ../shared/anchors/build.sh "
+                  "OUT builds them in OUT/bin): VQF and Fusion run on the same samples and are scored the same way");
   };
   auto* broad = app.add_subcommand("broad", "BROAD trials: BROAD's metric, the aligned metric, worst inclination");
   std::string dir = HEADINGD_STUDY_BROAD_DIR, only;
@@ -145,6 +183,13 @@ int main(int argc, char** argv) {
 
   try {
     const core::EstimatorParams params = loadParams(config, sets);
+    std::vector<study::AnchorFilter> anchors;
+    if (!anchors_dir.empty()) {
+      anchors = study::findAnchors(anchors_dir);
+      if (anchors.empty()) throw std::runtime_error("no anchor_vqf or anchor_fusion in " + anchors_dir);
+      std::printf("anchors: %zu comparator filters from %s, run on the same samples\n", anchors.size(),
+                  anchors_dir.c_str());
+    }
     if (rates.empty()) rates.push_back(0.0);
     std::vector<std::string> paths;  // BROAD trials, or
     std::vector<std::uint64_t> seeds;  // simulator seeds
@@ -183,7 +228,8 @@ int main(int argc, char** argv) {
         }
       }
       const auto est = study::runEstimator(r, params);
-      rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg)};
+      rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg), {}};
+      for (const auto& a : anchors) rows[job].anchors.push_back(study::score(r, study::runAnchor(a, r)));
       if (job == 0 && !trace.empty()) {
         const std::lock_guard lock(trace_mutex);
         writeTrace(trace, r, params);
@@ -217,6 +263,7 @@ int main(int argc, char** argv) {
                   rates[ri], sum_tot / n, "", sum_incl / n, sum_atot / n, "", "", "", "", worst_max, worst_after,
                   worst_settle);
     }
+    if (!anchors.empty()) printSideBySide(rows, rates, anchors);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-study: %s\n", e.what());
     return 1;
