@@ -16,14 +16,6 @@ const Mat4 kStartupCovariance = 0.05 * 0.05 * Mat4::Identity();
 // since it started afresh: before, they correct the start.
 constexpr double kBiasSettleTimeConstants = 5.0;
 
-// How long the tilt takes to follow a quiet accelerometer: the prefilter's time
-// constant plus the EKF's. The EKF's, in steady state, is 2 σ_a / (g σ_ω) for a gravity
-// noise σ_a and a rate noise σ_ω per sample (the tilt's random walk of (σ_ω dt / 2)² per
-// sample against σ_a / g per sample): independent of the sample rate.
-double tiltTimeConstantS(const EstimatorParams& p) {
-  return p.accel_prefilter_time_constant_s + 2.0 * p.accel_noise_m_s2 / (p.gravity_m_s2 * p.gyro_noise_rad_s);
-}
-
 // A world-fixed vector v (sensor axes) as a sensor turned further by the small rotation
 // vector -φ sees it: v + φ × v + ½ φ × (φ × v), the rotation to second order (the third-order
 // term is below |φ|³/6: 3e-5 of |v| for 600 deg/s over half a 100 Hz sample).
@@ -87,7 +79,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       gravity_residual_.restart(p_.accel_residual_time_constant_s, p_.accel_disturbance_time_constant_s);
       mag_prefilter_.restart();
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
-      heading_corrections_.restart();
+      heading_corrections_.restart(vertical_rate_correction_rad_s_);
       ekf_.setCovariance(kStartupCovariance);
       heading_aligned_ = false;
       mag_seconds_ = 0.0;
@@ -104,7 +96,7 @@ void Estimator::initialise(const ImuSample& s, bool mag_usable) {
   if (s.accel_m_s2.norm() < 0.1 * p_.gravity_m_s2) return;  // no usable gravity direction yet
   ekf_.setAttitude(attitudeFromGravityAndField(s.accel_m_s2, mag_usable ? &s.mag_uT : nullptr));
   ekf_.setCovariance(kStartupCovariance);
-  heading_corrections_.restart();
+  heading_corrections_.restart(vertical_rate_correction_rad_s_);
   heading_aligned_ = mag_usable;
   tilt_seconds_ = 0.0;
   initialised_ = true;
@@ -119,9 +111,14 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   // the disturbance tests of the previous sample decide.
   const Vec3* field_for_rest = mag_usable && !out_.mag_disturbed ? &s.mag_uT : nullptr;
   const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, field_for_rest, dt_s);
+  turn_rate_rad_s_ = gyro.norm();
   const Quat increment = gyroIncrement(gyro, dt_s);  // shared by the EKF and the gyro-frame low-passes
   const double scale_noise = p_.gyro_scale_noise * gyro.norm();
   ekf_.predict(increment, dt_s, std::sqrt(p_.gyro_noise_rad_s * p_.gyro_noise_rad_s + scale_noise * scale_noise));
+  // The heading observer's integral term: the vertical rate error it has learned comes off
+  // the heading rate always, also while the field is disturbed (it is the gyro's error).
+  ekf_.turnHeading(vertical_rate_correction_rad_s_ * dt_s);
+  heading_corrections_.addRateTurn(vertical_rate_correction_rad_s_, dt_s);
   // The accelerometer and magnetometer samples are means over the interval, so they see the
   // body as it was part of the way through it, while the gyro's increment has brought the
   // attitude to its end: turn them by the rest of the interval's rotation.
@@ -162,7 +159,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
     ekf_ = previous_ekf;
     ++state_recoveries_;
   }
-  heading_corrections_.advance(dt_s);
+  heading_corrections_.advance(dt_s, vertical_rate_correction_rad_s_);
   publish(s.t_ns);
 }
 
@@ -174,6 +171,8 @@ void Estimator::restoreGyroHeading() {
   const double undo = -heading_corrections_.oldestSumRad();
   ekf_.turnHeading(undo);
   heading_corrections_.add(undo);
+  // The integral term likewise goes back to what it was then.
+  vertical_rate_correction_rad_s_ = heading_corrections_.oldestRateRadS();
   ++mag_heading_restores_;
 }
 
@@ -206,6 +205,16 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
     mag_seconds_ += dt_s;
     gain = std::max(magObserverGain(dt_s, p_.mag_heading_time_constant_s), dt_s / mag_seconds_);
   }
+  // The integral term (PI observer): once the observer has left its running-mean start, a
+  // lasting innovation means the gyro's vertical rate is wrong. Ki = 1/(τ τ_i): with τ_i = 4τ
+  // the loop ψ̃'' + ψ̃'/τ + Ki ψ̃ = 0 is critically damped, a rate error δ gone in a few 2τ.
+  if (heading_aligned_ && p_.mag_rate_error_time_constant_s > 0.0 && mag_seconds_ >= p_.mag_heading_time_constant_s &&
+      turn_rate_rad_s_ <= p_.mag_rate_error_max_turn_rad_s) {
+    vertical_rate_correction_rad_s_ = std::clamp(
+        vertical_rate_correction_rad_s_ +
+            m.innovation_rad * dt_s / (p_.mag_heading_time_constant_s * p_.mag_rate_error_time_constant_s),
+        -p_.bias_max_rad_s, p_.bias_max_rad_s);
+  }
   heading_aligned_ = true;
   ekf_.turnHeading(gain * m.innovation_rad);
   heading_corrections_.add(gain * m.innovation_rad);
@@ -226,6 +235,7 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.motion_level = motion_.level();
   out_.accel_disturbance = disturbance_.value();
   out_.gyro_bias_rad_s = bias_.bias();
+  out_.vertical_rate_correction_rad_s = vertical_rate_correction_rad_s_;
   out_.at_rest = bias_.atRest();
 }
 

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace headingd::core {
 
@@ -24,7 +25,8 @@ GyroBiasEstimator::GyroBiasEstimator(const EstimatorParams& p)
     : p_(p),
       rest_(p),
       initial_variance_(0.25 * p.bias_max_rad_s * p.bias_max_rad_s),
-      horizontal_rows_(p.accel_prefilter_time_constant_s) {
+      horizontal_rows_(p.accel_prefilter_time_constant_s),
+      spread_{TurnSpread(tiltTimeConstantS(p)), TurnSpread(tiltTimeConstantS(p))} {
   P_ = initial_variance_ * Mat3::Identity();
 }
 
@@ -54,6 +56,28 @@ const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_
   return bias_;
 }
 
+GyroBiasEstimator::TurnSpread::TurnSpread(double correlation_time_s)
+    : correlation_time_s(correlation_time_s), correlated(correlation_time_s) {}
+
+void GyroBiasEstimator::TurnSpread::add(double turn_rate_rad_s, double window_s) {
+  const double value = correlated.update(turn_rate_rad_s, window_s);
+  elapsed_s += window_s;
+  // Running means (weight T/t) until the low-pass's weight over 10 τ_c is the larger.
+  const double weight = std::max(window_s / elapsed_s, 1.0 - lowPassAlpha(window_s, 10.0 * correlation_time_s));
+  const auto track = [weight](double x, double& m, double& v) {
+    const double deviation = x - m;
+    m += weight * deviation;
+    v += weight * ((1.0 - weight) * deviation * deviation - v);
+  };
+  track(value, mean, variance);
+  track(turn_rate_rad_s, raw_mean, raw_variance);
+}
+
+double GyroBiasEstimator::TurnSpread::windowVariance(double window_s) const {
+  if (elapsed_s < 3.0 * correlation_time_s) return std::numeric_limits<double>::infinity();
+  return std::max(raw_variance, variance * 2.0 * correlation_time_s / window_s);
+}
+
 void GyroBiasEstimator::addTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s,
                                           bool measures_bias) {
   window_s_ += dt_s;
@@ -69,18 +93,31 @@ void GyroBiasEstimator::addTiltCorrection(const Eigen::Vector2d& turn_rad, const
   rows << 1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y),  //
       2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x);
   horizontal_rows_.update(rows, window_s_);
-  if (measuring_s_ >= window_s_ && p_.bias_motion_time_constant_s > 0.0) updateFromWindow();
+  if (measuring_s_ >= window_s_) {
+    for (int i = 0; i < 2; ++i) spread_[i].add(window_turn_rad_(i) / window_s_, window_s_);
+    // The model's H, the low-passed rows, is the turns' lag only while the attitude stays
+    // near its low-passed value; while the sensor turns on, the turns follow the rows of
+    // some other moment and "explain" a bias that is not there.
+    const double moved = (rows - horizontal_rows_.value()).norm();
+    if (p_.bias_motion_time_constant_s > 0.0 && moved <= p_.bias_motion_max_attitude_change) updateFromWindow();
+  }
   window_s_ = measuring_s_ = 0.0;
   window_turn_rad_.setZero();
 }
 
 void GyroBiasEstimator::updateFromWindow() {
-  // Over a window of length T the turns sum to -R̄_h β T: y = -Σturn / T, H = R̄_h, W = N / T.
+  // Over a window of length T the turns sum to -R̄_h β T: y = -Σturn / T, H = R̄_h, W the
+  // larger of the turns' spread (header) and N / T (N = τ² walk²: the estimate follows a
+  // changing bias with time constant τ at most).
+  const double W0 = spread_[0].windowVariance(window_s_), W1 = spread_[1].windowVariance(window_s_);
+  if (!std::isfinite(W0) || !std::isfinite(W1)) return;
   const Eigen::Matrix<double, 2, 3>& H = horizontal_rows_.value();
   const double tau_walk = p_.bias_motion_time_constant_s * p_.bias_walk_rad_s_per_sqrt_s;
+  const double nominal = tau_walk * tau_walk / window_s_;
   const Eigen::Matrix<double, 3, 2> PHt = P_ * H.transpose();
   Eigen::Matrix2d S = H * PHt;
-  S.diagonal().array() += tau_walk * tau_walk / window_s_;
+  S(0, 0) += std::max(nominal, W0);
+  S(1, 1) += std::max(nominal, W1);
   const Eigen::Matrix<double, 3, 2> K = PHt * S.inverse();
   const Eigen::Vector2d innovation = -window_turn_rad_ / window_s_;  // = H (b - b̂)
   bias_ += K * clipped(innovation, p_.bias_max_rad_s);

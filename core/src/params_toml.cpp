@@ -37,6 +37,8 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"redefine_heading_enter", &P::redefine_heading_enter, -1.0, 1.0, "h(q)"},
       {"redefine_heading_leave", &P::redefine_heading_leave, -1.0, 1.0, "h(q)"},
       {"mag_heading_time_constant_s", &P::mag_heading_time_constant_s, 1e-3, kInf, "s"},
+      {"mag_rate_error_time_constant_s", &P::mag_rate_error_time_constant_s, 0.0, 1e5, "s"},
+      {"mag_rate_error_max_turn_rad_s", &P::mag_rate_error_max_turn_rad_s, 0.0, 1e3, "rad/s"},
       {"mag_min_horizontal_fraction", &P::mag_min_horizontal_fraction, 0.0, 1.0, "1"},
       {"mag_prefilter_time_constant_s", &P::mag_prefilter_time_constant_s, 0.0, 10.0, "s"},
       {"mag_disturbance_time_constant_s", &P::mag_disturbance_time_constant_s, 1e-3, 600.0, "s"},
@@ -66,6 +68,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"bias_walk_rad_s_per_sqrt_s", &P::bias_walk_rad_s_per_sqrt_s, 1e-9, 1.0, "rad/s/sqrt(s)"},
       {"bias_time_constant_s", &P::bias_time_constant_s, 1e-3, 3600.0, "s"},
       {"bias_motion_time_constant_s", &P::bias_motion_time_constant_s, 0.0, 1e5, "s"},
+      {"bias_motion_max_attitude_change", &P::bias_motion_max_attitude_change, 0.0, 10.0, "1"},
       {"bias_max_rad_s", &P::bias_max_rad_s, 0.0, 1.0, "rad/s"},
   };
   return specs;

@@ -183,6 +183,22 @@ TEST(GyroBiasEstimator, TheGravityUpdatesTurnsMeasureTheHorizontalBias) {
   EXPECT_NEAR(est.bias().z(), 0.0, 1e-9);  // the vertical is not seen
 }
 
+TEST(GyroBiasEstimator, TheTurnsOfASensorThatKeepsTurningAreNotTakenForBias) {
+  // Turning at 0.5 rad/s about the vertical, the attitude never stays near its low-passed
+  // value: the same turns that measure a bias on a steady sensor say nothing here.
+  const EstimatorParams p;
+  GyroBiasEstimator est(p);
+  for (int i = 0; i < 6000; ++i) {
+    const Quat q_nb = headingRotation(0.5 * i * kDt);
+    est.addTiltCorrection(Eigen::Vector2d(-0.02 * kDt, 0.0), q_nb, kDt, true);
+  }
+  EXPECT_EQ(est.bias(), Vec3::Zero());
+  // The same turns on a sensor holding its attitude do move it.
+  GyroBiasEstimator steady(p);
+  for (int i = 0; i < 6000; ++i) steady.addTiltCorrection(Eigen::Vector2d(-0.02 * kDt, 0.0), Quat::Identity(), kDt, true);
+  EXPECT_GT(steady.bias().x(), 0.01);
+}
+
 TEST(GyroBiasEstimator, StaysWithinTheClamp) {
   const EstimatorParams p;
   GyroBiasEstimator est(p);

@@ -4,7 +4,8 @@
 //   gate (timestamps, NaN) → gyro bias (still blocks) → EKF predict (Henriksson eq. 3.2-3.3)
 //   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → d_k and R level (eq. 3.1, 3.4,
 //   hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's turn, in motion)
-//   → magnetometer heading observer (eq. 4.2) with the gyro-only heading restored at a
+//   → magnetometer heading observer (eq. 4.2, with an integral term for the vertical rate
+//   error) with the gyro-only heading restored at a
 //   disturbance's onset (eq. 4.4, heading_corrections.hpp) → heading definition (§3.3).
 #include <cstdint>
 
@@ -38,6 +39,9 @@ struct EstimatorOutput {
   double accel_disturbance = 0.0;  // d_k, (m/s²)²
   double gravity_noise_m_s2 = 0.0;  // σ of R_k in this sample's gravity update (gravity_residual.hpp)
   Vec3 gyro_bias_rad_s = Vec3::Zero();
+  // Added to the heading rate about NED down: the heading observer's integral term, the
+  // vertical rate error the field has shown (rad/s; mag_rate_error_time_constant_s).
+  double vertical_rate_correction_rad_s = 0.0;
   bool at_rest = false;
   bool mag_used = false;
   bool mag_disturbed = false;
@@ -118,6 +122,8 @@ class Estimator {
   HeadingDefinitionSelector heading_definition_;
   MagDisturbanceDetector mag_disturbance_;
   double mag_seconds_ = 0.0;  // time since the first usable field sample
+  double vertical_rate_correction_rad_s_ = 0.0;  // the observer's integral term
+  double turn_rate_rad_s_ = 0.0;  // |ω| of the current sample, bias taken off
   double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)
   bool initialised_ = false;
   bool heading_aligned_ = false;

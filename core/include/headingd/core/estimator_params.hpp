@@ -89,6 +89,23 @@ struct EstimatorParams {
   // total, the same order at 100 and 50 Hz); the simulated urban walk agrees (10 s 6.9 deg,
   // 15 s 6.0 deg true-heading RMSE). The 10 s used before was chosen with held-out trials.
   double mag_heading_time_constant_s = 15.0;
+  // Integral term of the observer: a lasting innovation ψ_mm - ψ is a rate error of the
+  // gyro about the vertical (a bias no rest has shown), and the heading rate is corrected by
+  // ∫ innovation dt / (τ τ_i), τ the time constant above and τ_i this one (0 turns it off).
+  // Without it a rate error δ leaves the heading δ·τ behind for as long as it lasts (10 mrad/s:
+  // 8.6°). τ_i = 4τ = 60 s makes the loop critically damped (no overshoot; an error is gone
+  // in a few 2τ). Off by default: a field that is wrong but looks clean (indoors, a building's
+  // steady offset) is taken for a rate error too, and the rate it learns outlasts it. On the
+  // simulated urban walk (seeds 1-6) 60 s costs 8.90 → 10.67° total (consumer grade) and
+  // 6.76 → 8.99° (mems), 240 s 9.37° / 7.40°; on the shared BROAD trials and phone groups
+  // it changes the total by < 0.1°. Switch it on for a sensor whose rate error no rest shows
+  // and a field that is clean where it is used.
+  double mag_rate_error_time_constant_s = 0.0;
+  // ... learned only while the sensor turns slower than this: in a fast turn the innovation
+  // says more about the magnetometer's timing against the gyro (phones: 20-40 ms late) than
+  // about a rate error. On the shared BROAD trials, whose fast ones turn at up to several
+  // rad/s, no limit / 1 / 0.5 rad/s give 2.11 / 1.88 / 1.85° total (1.86° without the term).
+  double mag_rate_error_max_turn_rad_s = 0.5;
   // The horizontal field must be at least this share of the total field for a heading.
   double mag_min_horizontal_fraction = 0.1;
   // The field is low-passed in a gyro-integrated frame (gyro_frame_low_pass.hpp) with this
@@ -179,11 +196,35 @@ struct EstimatorParams {
   // first rest converges faster, from the large uncertainty of knowing nothing).
   double bias_time_constant_s = 10.0;
   // In motion, the gravity update's corrections measure the horizontal part of the bias
-  // error; the estimate follows them with this time constant (0 turns it off).
+  // error; the estimate follows them with this time constant at most (0 turns it off), each
+  // 0.1 s window weighted by the turns' measured spread (gyro_bias_estimator.hpp).
   double bias_motion_time_constant_s = 100.0;
+  // ... but only while the horizontal rows of the attitude matrix R differ from their
+  // low-passed values by at most this (Frobenius norm; about the angle in rad by which the
+  // attitude moved within the gravity filters' time, 1 to 1.4 times it). Beyond, the sensor
+  // turns too much for the low-passed R to be the turns' lag, and the turns "explain" a
+  // bias that is not there. On the 39 shared phone recordings (no rest; the phone always
+  // turns) the ungated update learned 20-100 mrad/s of false bias. Fitted total, groups
+  // nexus5 / nexus5_magnets / iphone / iphone_magnets: no limit 10.34 / 10.07 / 7.84 /
+  // 11.67°; 0.1: 1.84 / 6.32 / 2.92 / 4.23°; 0.15: 1.86 / 6.16 / 2.92 / 4.03°; 0.2: 1.96 /
+  // 6.21 / 2.89 / 3.99°; 0.25: 2.04 / 6.13 / 2.95 / 4.11°; update off: 1.85 / 6.36 / 2.94 /
+  // 4.19° (VQF 2.78 / 10.45 / 3.01 / 3.99°). The simulated consumer gyro shaken for 60 s
+  // (shake-any seed 36) needs the update: worst tilt 4.02° with any of these limits, 5.34°
+  // off. BROAD 1.85° total with each. 0.15 and 0.2 are alike within 0.1° everywhere; 0.2
+  // misses BROAD's 50 Hz inclination check (RateIndependence.*, 15 % of native) on trial 15
+  // by 0.0002°, 0.15 keeps it.
+  double bias_motion_max_attitude_change = 0.15;
   // The bias estimate is clamped to this magnitude (a larger one means rest was misjudged);
   // half of it is the uncertainty of the estimate before anything is known.
   double bias_max_rad_s = 0.1;
 };
+
+// How long the tilt takes to follow a quiet accelerometer: the prefilter's time
+// constant plus the EKF's. The EKF's, in steady state, is 2 σ_a / (g σ_ω) for a gravity
+// noise σ_a and a rate noise σ_ω per sample (the tilt's random walk of (σ_ω dt / 2)² per
+// sample against σ_a / g per sample): independent of the sample rate.
+inline double tiltTimeConstantS(const EstimatorParams& p) {
+  return p.accel_prefilter_time_constant_s + 2.0 * p.accel_noise_m_s2 / (p.gravity_m_s2 * p.gyro_noise_rad_s);
+}
 
 }  // namespace headingd::core

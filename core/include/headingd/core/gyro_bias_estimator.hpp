@@ -10,8 +10,20 @@
 //    EKF's gravity update turns it back. Over the time the gravity filters average (their lag
 //    is taken into R by low-passing it), the update's turn about NED north and east per
 //    second is -(R β)_h: measurement y = -turn/dt, H = R̄_h (the horizontal rows of the
-//    low-passed R). The vertical part of the bias is not seen this way; the heading observer
-//    pulls the drift it causes back towards the magnetometer.
+//    low-passed R). The vertical part of the bias is not seen this way; the heading observer's
+//    integral term (estimator.hpp) takes the rate error it causes out while the field is clean.
+//    How much a window of turns says comes from the data, not from an assumption: the turns
+//    carry everything the motion does to the tilt, correlated over the tilt's time constant
+//    τ_c. Their spread is measured on the turns low-passed with τ_c (variance V), and a
+//    window of length T counts as W = V · 2τ_c / T (the variance of a long mean of a process
+//    of that correlation time, spread over its windows), never less than the windows' own
+//    spread; nothing is measured until the spread has been seen for 3 τ_c. Violent motion
+//    then says less about the bias.
+//    And only while the attitude stays near its low-passed value
+//    (bias_motion_max_attitude_change): while the sensor turns on, the low-passed R is not the
+//    turns' real lag, the turns' mean is not the bias, and on the phone recordings (no rest,
+//    the phone always turning) the update learned 20-100 mrad/s that were not there;
+//    estimator_params.hpp gives the figures.
 // The same structure carries VQF's motion bias estimation (Laidig & Seel 2023); MAGYQ
 // (Renaudin & Combettes 2014, §3) keeps the gyro bias as filter states for the same reason.
 //
@@ -22,6 +34,7 @@
 // sample of period dt is a measurement of variance N / dt: the filter behaves the same at
 // any sample rate.
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 
 #include "headingd/core/estimator_params.hpp"
@@ -60,6 +73,21 @@ class GyroBiasEstimator {
  private:
   void clampBias();
 
+  // The spread of one component of the turns per second (see the top): low-passed with the
+  // correlation time τ_c, then their variance about their own mean over 10 τ_c (running
+  // means until then), and the variance of the turns themselves.
+  struct TurnSpread {
+    explicit TurnSpread(double correlation_time_s);
+    void add(double turn_rate_rad_s, double window_s);
+    // W of a window of length window_s; +∞ until the spread has been seen for 3 τ_c.
+    double windowVariance(double window_s) const;
+    double correlation_time_s;
+    LowPass<double> correlated;
+    double elapsed_s = 0.0;
+    double mean = 0.0, variance = 0.0;          // of the low-passed turns
+    double raw_mean = 0.0, raw_variance = 0.0;  // of the turns themselves
+  };
+
   // A copy, not a reference to the owner's parameters: the Estimator that holds this one
   // stays an ordinary value (copied or moved, it carries on from the same state), where a
   // reference would keep pointing into the object it was copied from. A few hundred bytes.
@@ -71,6 +99,7 @@ class GyroBiasEstimator {
   void updateFromWindow();
 
   LowPass<Eigen::Matrix<double, 2, 3>> horizontal_rows_;  // R̄_h, updated once a window
+  std::array<TurnSpread, 2> spread_;                       // about north, about east
   double window_s_ = 0.0;
   double measuring_s_ = 0.0;  // of the window, the time whose turns measure the bias
   Eigen::Vector2d window_turn_rad_ = Eigen::Vector2d::Zero();

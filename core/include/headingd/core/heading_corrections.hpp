@@ -22,22 +22,33 @@ class HeadingCorrectionLog {
     sum_rad_[0] += angle_rad;
     sum_rad_[1] += angle_rad;
   }
-  // Time passes; each sum restarts once it is a reset period old.
-  void advance(double dt_s) {
+  // The observer's integral term turned the heading by rate_rad_s · dt_s (about NED down).
+  // Had the field not been used since a sum restarted, the term would have kept the value
+  // it had then: each sum counts only what it has moved since.
+  void addRateTurn(double rate_rad_s, double dt_s) {
+    for (int i = 0; i < 2; ++i) sum_rad_[i] += (rate_rad_s - rate_at_restart_rad_s_[i]) * dt_s;
+  }
+  // Time passes; each sum restarts once it is a reset period old, keeping the integral
+  // term's value `rate_rad_s` of that moment.
+  void advance(double dt_s, double rate_rad_s = 0.0) {
     for (int i = 0; i < 2; ++i) {
       age_s_[i] += dt_s;
       if (age_s_[i] >= reset_period_s_) {
         age_s_[i] = 0.0;
         sum_rad_[i] = 0.0;
+        rate_at_restart_rad_s_[i] = rate_rad_s;
       }
     }
   }
   // The older sum and its age.
   double oldestSumRad() const { return age_s_[0] >= age_s_[1] ? sum_rad_[0] : sum_rad_[1]; }
   double oldestAgeS() const { return age_s_[0] >= age_s_[1] ? age_s_[0] : age_s_[1]; }
+  // The integral term's value when the older sum restarted.
+  double oldestRateRadS() const { return age_s_[0] >= age_s_[1] ? rate_at_restart_rad_s_[0] : rate_at_restart_rad_s_[1]; }
   // Both restart (start-up, gap), staggered by half a period (eq. 4.4b's n + N/2).
-  void restart() {
+  void restart(double rate_rad_s = 0.0) {
     sum_rad_[0] = sum_rad_[1] = 0.0;
+    rate_at_restart_rad_s_[0] = rate_at_restart_rad_s_[1] = rate_rad_s;
     age_s_[0] = 0.0;
     age_s_[1] = 0.5 * reset_period_s_;
   }
@@ -46,6 +57,7 @@ class HeadingCorrectionLog {
   double reset_period_s_;
   double sum_rad_[2] = {0.0, 0.0};
   double age_s_[2] = {0.0, 0.0};
+  double rate_at_restart_rad_s_[2] = {0.0, 0.0};
 };
 
 }  // namespace headingd::core
