@@ -45,9 +45,10 @@ table() {  # table TITLE -- study arguments
     /^side by side/ { side = 1; next }
     side && /^run / { n = split($0, h, "|"); printf "| run | Hz |"; for (i = 2; i <= n; ++i) { gsub(/ /, "", h[i]); printf " %s plain | %s fitted tot / head / incl |", h[i], h[i] } print ""
                       printf "|---|---:|"; for (i = 2; i <= n; ++i) printf "---:|---:|"; print ""; next }
-    side { n = split($0, f, "|"); split(f[1], a, " "); name = (a[1] == "SIDE-MEAN") ? "**mean**" : a[1]; hz = a[length(a)]
+    side { n = split($0, f, "|"); split(f[1], a, " "); name = (a[1] == "SIDE-MEAN") ? "**mean**" : a[1]
+           hz = (a[length(a)] == "0.0") ? "native" : a[length(a)]
            printf "| %s | %s |", name, hz
-           for (i = 2; i <= n; ++i) { split(f[i], v, " "); printf " %s | %s |", v[1], v[2] } print "" }
+           for (i = 2; i <= n; ++i) { gsub(/\/ +/, "/", f[i]); split(f[i], v, " "); printf " %s | %s |", v[1], v[2] } print "" }
     !side && /^MEAN/ && anchors == 0 { print "| mean | " $2 " | " $3 " |" }'
 }
 
