@@ -111,14 +111,17 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   // the disturbance tests of the previous sample decide.
   const Vec3* field_for_rest = mag_usable && !out_.mag_disturbed ? &s.mag_uT : nullptr;
   const Vec3 gyro = s.gyro_rad_s - bias_.update(s.gyro_rad_s, s.accel_m_s2, field_for_rest, dt_s);
-  turn_rate_rad_s_ = gyro.norm();
+  const double turn_rate_rad_s = gyro.norm();
   const Quat increment = gyroIncrement(gyro, dt_s);  // shared by the EKF and the gyro-frame low-passes
-  const double scale_noise = p_.gyro_scale_noise * gyro.norm();
+  const double scale_noise = p_.gyro_scale_noise * turn_rate_rad_s;
   ekf_.predict(increment, dt_s, std::sqrt(p_.gyro_noise_rad_s * p_.gyro_noise_rad_s + scale_noise * scale_noise));
   // The heading observer's integral term: the vertical rate error it has learned comes off
   // the heading rate always, also while the field is disturbed (it is the gyro's error).
-  ekf_.turnHeading(vertical_rate_correction_rad_s_ * dt_s);
-  heading_corrections_.addRateTurn(vertical_rate_correction_rad_s_, dt_s);
+  // Zero while the term is off (the default): then nothing is turned.
+  if (vertical_rate_correction_rad_s_ != 0.0) {
+    ekf_.turnHeading(vertical_rate_correction_rad_s_ * dt_s);
+    heading_corrections_.addRateTurn(vertical_rate_correction_rad_s_, dt_s);
+  }
   // The accelerometer and magnetometer samples are means over the interval, so they see the
   // body as it was part of the way through it, while the gyro's increment has brought the
   // attitude to its end: turn them by the rest of the interval's rotation.
@@ -150,7 +153,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   mag_prefilter_.advance(increment);
   mag_sample_dt_s_ += dt_s;
   if (mag_usable) {
-    correctHeading(mag_prefilter_.add(mag_now, mag_sample_dt_s_), dt_s);
+    correctHeading(mag_prefilter_.add(mag_now, mag_sample_dt_s_), dt_s, turn_rate_rad_s);
     mag_sample_dt_s_ = 0.0;
   }
 
@@ -176,7 +179,7 @@ void Estimator::restoreGyroHeading() {
   ++mag_heading_restores_;
 }
 
-void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
+void Estimator::correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate_rad_s) {
   const auto m = measureMagHeading(ekf_.attitude(), mag_uT, p_.mag_min_horizontal_fraction);
   if (!m.valid) {
     ++mag_no_heading_;
@@ -209,7 +212,7 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s) {
   // lasting innovation means the gyro's vertical rate is wrong. Ki = 1/(τ τ_i): with τ_i = 4τ
   // the loop ψ̃'' + ψ̃'/τ + Ki ψ̃ = 0 is critically damped, a rate error δ gone in a few 2τ.
   if (heading_aligned_ && p_.mag_rate_error_time_constant_s > 0.0 && mag_seconds_ >= p_.mag_heading_time_constant_s &&
-      turn_rate_rad_s_ <= p_.mag_rate_error_max_turn_rad_s) {
+      turn_rate_rad_s <= p_.mag_rate_error_max_turn_rad_s) {
     vertical_rate_correction_rad_s_ = std::clamp(
         vertical_rate_correction_rad_s_ +
             m.innovation_rad * dt_s / (p_.mag_heading_time_constant_s * p_.mag_rate_error_time_constant_s),

@@ -104,7 +104,9 @@ class Estimator {
  private:
   void initialise(const ImuSample& s, bool mag_usable);
   void step(const ImuSample& s, double dt_s, bool mag_usable);
-  void correctHeading(const Vec3& mag_uT, double dt_s);
+  // turn_rate_rad_s: |ω| of this sample, bias taken off (the integral term learns only below
+  // mag_rate_error_max_turn_rad_s).
+  void correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate_rad_s);
   void restoreGyroHeading();
   void publish(std::int64_t t_ns);
 
@@ -123,7 +125,6 @@ class Estimator {
   MagDisturbanceDetector mag_disturbance_;
   double mag_seconds_ = 0.0;  // time since the first usable field sample
   double vertical_rate_correction_rad_s_ = 0.0;  // the observer's integral term
-  double turn_rate_rad_s_ = 0.0;  // |ω| of the current sample, bias taken off
   double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)
   bool initialised_ = false;
   bool heading_aligned_ = false;
