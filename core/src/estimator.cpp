@@ -51,7 +51,9 @@ Estimator::Estimator(const EstimatorParams& params)
       heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave),
       mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
                         p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
-                        p_.mag_max_reference_dip_deviation_rad}) {}
+                        p_.mag_max_reference_dip_deviation_rad}),
+      heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
+                            p_.bias_walk_rad_s_per_sqrt_s}) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
   out_.dt_s = 0.0;
@@ -82,6 +84,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       heading_corrections_.restart(vertical_rate_correction_rad_s_);
       ekf_.setCovariance(kStartupCovariance);
       heading_aligned_ = false;
+      heading_uncertainty_.forget();
       mag_seconds_ = 0.0;
       tilt_seconds_ = 0.0;
       publish(s.t_ns);
@@ -98,6 +101,9 @@ void Estimator::initialise(const ImuSample& s, bool mag_usable) {
   ekf_.setCovariance(kStartupCovariance);
   heading_corrections_.restart(vertical_rate_correction_rad_s_);
   heading_aligned_ = mag_usable;
+  heading_uncertainty_.forget();
+  predictHeadingUncertainty(0.0);
+  if (mag_usable) heading_uncertainty_.correct(1.0, 0.0);
   tilt_seconds_ = 0.0;
   initialised_ = true;
   publish(s.t_ns);
@@ -147,6 +153,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   bias_.addTiltCorrection(tilt_turn, ekf_.attitude(), dt_s,
                           !bias_.atRest() && tilt_seconds_ >= kBiasSettleTimeConstants * tiltTimeConstantS(p_));
 
+  predictHeadingUncertainty(dt_s);
   out_.mag_used = false;
   out_.mag_disturbed = false;
   out_.mag_gain = 0.0;
@@ -211,19 +218,27 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate
   // The integral term (PI observer): once the observer has left its running-mean start, a
   // lasting innovation means the gyro's vertical rate is wrong. Ki = 1/(τ τ_i): with τ_i = 4τ
   // the loop ψ̃'' + ψ̃'/τ + Ki ψ̃ = 0 is critically damped, a rate error δ gone in a few 2τ.
+  double rate_gain = 0.0;
   if (heading_aligned_ && p_.mag_rate_error_time_constant_s > 0.0 && mag_seconds_ >= p_.mag_heading_time_constant_s &&
       turn_rate_rad_s <= p_.mag_rate_error_max_turn_rad_s) {
-    vertical_rate_correction_rad_s_ = std::clamp(
-        vertical_rate_correction_rad_s_ +
-            m.innovation_rad * dt_s / (p_.mag_heading_time_constant_s * p_.mag_rate_error_time_constant_s),
-        -p_.bias_max_rad_s, p_.bias_max_rad_s);
+    rate_gain = dt_s / (p_.mag_heading_time_constant_s * p_.mag_rate_error_time_constant_s);
+    vertical_rate_correction_rad_s_ = std::clamp(vertical_rate_correction_rad_s_ + m.innovation_rad * rate_gain,
+                                                 -p_.bias_max_rad_s, p_.bias_max_rad_s);
   }
+  if (heading_aligned_) heading_uncertainty_.observeInnovation(m.innovation_rad, dt_s);
+  heading_uncertainty_.correct(gain, rate_gain);
   heading_aligned_ = true;
   ekf_.turnHeading(gain * m.innovation_rad);
   heading_corrections_.add(gain * m.innovation_rad);
   out_.mag_used = true;
   out_.mag_gain = gain;
   out_.mag_innovation_rad = m.innovation_rad;
+}
+
+void Estimator::predictHeadingUncertainty(double dt_s) {
+  const Quat q = ekf_.attitude();
+  const Vec3 down_s = q.conjugate() * Vec3::UnitZ();  // NED down in sensor axes
+  heading_uncertainty_.predict(dt_s, down_s.dot(bias_.covariance() * down_s));
 }
 
 void Estimator::publish(std::int64_t t_ns) {
@@ -240,6 +255,7 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.gyro_bias_rad_s = bias_.bias();
   out_.vertical_rate_correction_rad_s = vertical_rate_correction_rad_s_;
   out_.at_rest = bias_.atRest();
+  out_.heading_sigma_rad = heading_uncertainty_.sigmaRad();
 }
 
 EstimatorCounters Estimator::counters() const {

@@ -23,6 +23,8 @@ void fillHeading(headingd::heading_t& m, const core::HeadingOutput& h, Validity 
   const auto& a = h.attitude;
   m.heading_true_rad = any ? h.heading_true_rad : 0.0;
   m.heading_mag_rad = any ? h.heading_mag_rad : 0.0;
+  m.heading_mag_sigma_rad = any ? h.heading_mag_sigma_rad : 0.0;
+  m.heading_true_sigma_rad = any ? h.heading_true_sigma_rad : 0.0;
   m.declination_rad = h.declination_rad;
   m.declination_sigma_rad = h.declination_sigma_rad;
   m.declination_sources = static_cast<std::int32_t>(h.declination_sources);

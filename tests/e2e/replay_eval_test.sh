@@ -11,7 +11,7 @@ trap 'rm -rf "$work"' EXIT
 
 "$replay" --imu-csv "$trial" --out "$work/est.csv" 2>"$work/counters.json"
 header=$(head -n 1 "$work/est.csv")
-[ "$header" = "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg" ] || { echo "bad header: $header"; exit 1; }
+[ "$header" = "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg" ] || { echo "bad header: $header"; exit 1; }
 in_rows=$(( $(zcat -f "$trial" | wc -l) - 1 ))
 out_rows=$(( $(wc -l < "$work/est.csv") - 1 ))
 [ "$in_rows" -eq "$out_rows" ] || { echo "rows: in $in_rows, out $out_rows"; exit 1; }

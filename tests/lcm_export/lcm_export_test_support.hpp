@@ -178,7 +178,8 @@ class AwkwardValues {
 
 inline headingd::heading_t awkwardHeading(AwkwardValues& v) {
   headingd::heading_t m;
-  v.fill(m.utime, m.sample_utime, m.sample_age_us, m.validity, m.heading_true_rad, m.heading_mag_rad, m.declination_rad,
+  v.fill(m.utime, m.sample_utime, m.sample_age_us, m.validity, m.heading_true_rad, m.heading_mag_rad,
+         m.heading_mag_sigma_rad, m.heading_true_sigma_rad, m.declination_rad,
          m.declination_sigma_rad, m.declination_sources, m.declination_source, m.mount_yaw_rad, m.mount_yaw_sigma_rad,
          m.mag_disturbed, m.mag_norm_jump, m.mag_dip_jump, m.mag_norm_reference, m.mag_dip_reference, m.mag_used,
          m.mag_gain, m.mag_innovation_rad, m.heading_redefined);

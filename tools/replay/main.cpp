@@ -71,12 +71,13 @@ int main(int argc, char** argv) {
                  "with --recording: also write HEADING and ATTITUDE after every IMU sample and GPS epoch to this LCM "
                  "log (utime = the sample's time), to compare with an lcm-logger log of the live run");
   app.add_option("--config", config, "TOML file with an [estimator] table (config/estimator.toml lists the keys)");
-  app.add_option("--out", out, "output CSV: t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg");
+  app.add_option("--out", out, "output CSV: t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg (the 1-sigma of yaw_deg; 103.9 until the first field sample)");
   std::string nmea_path, wmm_path = HEADINGD_WMM_DEFAULT_COF;
   double nmea_first_epoch_t = 0.0;
   app.add_option("--nmea", nmea_path,
                  "NMEA capture of the GPS beside the IMU; adds the columns heading_mag_deg,declination_deg,"
-                 "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed. "
+                 "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed,heading_mag_sigma_deg,"
+                 "heading_true_sigma_deg (in place of heading_sigma_deg; inf while no declination is known). "
                  "Alignment: the first NMEA epoch (first sentence with a UTC time) is at IMU time "
                  "--nmea-first-epoch-t, later epochs at that plus their UTC difference");
   app.add_option("--nmea-first-epoch-t", nmea_first_epoch_t, "IMU time [s] of the first NMEA epoch (default 0)")

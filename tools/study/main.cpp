@@ -73,11 +73,13 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
 void writeTrace(const std::string& path, const study::Recording& r, const core::EstimatorParams& params) {
   std::ostringstream out;  // written whole at the end, through a temporary file renamed into place
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
-         "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise\n";
+         "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,mag_innovation_deg,mag_gain,rate_sigma_deg_s\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
+  std::vector<double> rate_sigmas;
   const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
     outputs.push_back(e.output());
+    rate_sigmas.push_back(e.headingUncertainty().rateSigmaRadS());
     still_blocks.push_back(e.counters().bias_still_blocks);
     restores.push_back(e.counters().mag_heading_restores);
   });
@@ -87,13 +89,15 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const auto& o = outputs[i];
     const auto e = core::eulerZyx(o.q_nb);
     const auto t = core::eulerZyx(r.truth_nb[i]);
-    std::snprintf(line, sizeof line, "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f\n",
+    std::snprintf(line, sizeof line, "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
                   o.gyro_bias_rad_s.z(), o.mag_disturbed ? 1 : 0, static_cast<unsigned long long>(still_blocks[i]),
                   r.moving[i] ? 1 : 0, e.roll_rad * kDeg, e.pitch_rad * kDeg, t.roll_rad * kDeg, t.pitch_rad * kDeg,
-                  o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2);
+                  o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2,
+                  o.heading_sigma_rad * kDeg, o.mag_innovation_rad * kDeg, o.mag_gain,
+                  rate_sigmas[i] * kDeg);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());
@@ -104,6 +108,9 @@ struct Row {
   double rate_hz = 0.0;
   study::RunScore score;
   study::EpisodeScore episode;
+  // Share of heading errors within 2 stated sigmas: plain errors on simulations (the truth is
+  // in the estimator's magnetic frame), after the fitted alignment on recordings.
+  double heading_2sigma = 0.0;
   std::vector<study::RunScore> anchors;  // one per --anchors filter, in findAnchors' order
 };
 
@@ -227,8 +234,14 @@ int main(int argc, char** argv) {
           r = study::resample(r, rate, centred ? study::VectorWindow::kCentred : study::VectorWindow::kTrailing);
         }
       }
-      const auto est = study::runEstimator(r, params);
-      rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg), {}};
+      std::vector<double> sigmas;
+      sigmas.reserve(r.size());
+      const auto est = study::runEstimator(
+          r, params, [&](std::size_t, const core::Estimator& e) { sigmas.push_back(e.output().heading_sigma_rad); });
+      const double coverage =
+          study::headingCoverage(r, *simulate ? est : study::alignedEstimates(r, est), sigmas, 2.0);
+      rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg),
+                   coverage, {}};
       for (const auto& a : anchors) rows[job].anchors.push_back(study::score(r, study::runAnchor(a, r)));
       if (job == 0 && !trace.empty()) {
         const std::lock_guard lock(trace_mutex);
@@ -236,21 +249,23 @@ int main(int argc, char** argv) {
       }
     });
 
-    std::printf("%-46s %7s | %6s %6s %6s | %6s %6s %6s | %7s | %7s %7s %7s %7s\n", "run", "Hz", "tot", "head", "incl",
-                "a.tot", "a.head", "a.incl", "maxincl", "ep.incl", "ep.max", "after", "settle");
+    std::printf("%-46s %7s | %6s %6s %6s | %6s %6s %6s | %7s | %7s %7s %7s %7s | %6s\n", "run", "Hz", "tot", "head",
+                "incl", "a.tot", "a.head", "a.incl", "maxincl", "ep.incl", "ep.max", "after", "settle", "h<2s%");
     for (std::size_t ri = 0; ri < rates.size(); ++ri) {
       double sum_tot = 0, sum_incl = 0, sum_atot = 0, worst_max = 0, worst_after = 0, worst_settle = 0;
+      double sum_coverage = 0;
       std::size_t n = 0;
       for (std::size_t job = ri; job < rows.size(); job += rates.size()) {
         const Row& row = rows[job];
         const auto& s = row.score;
         const auto& e = row.episode;
-        std::printf("%-46s %7.1f | %6.2f %6.2f %6.2f | %6.2f %6.2f %6.2f | %7.2f | %7.2f %7.2f %7.2f %7.1f\n",
+        std::printf("%-46s %7.1f | %6.2f %6.2f %6.2f | %6.2f %6.2f %6.2f | %7.2f | %7.2f %7.2f %7.2f %7.1f | %6.1f\n",
                     row.name.c_str(), row.rate_hz, s.rmse.total_rad * kDeg, s.rmse.heading_rad * kDeg,
                     s.rmse.inclination_rad * kDeg, s.aligned_rmse.total_rad * kDeg, s.aligned_rmse.heading_rad * kDeg,
                     s.aligned_rmse.inclination_rad * kDeg, s.max_inclination_rad * kDeg,
                     e.inclination_rmse_rad * kDeg, e.max_inclination_rad * kDeg, e.max_inclination_after_rad * kDeg,
-                    e.settle_time_s);
+                    e.settle_time_s, 100.0 * row.heading_2sigma);
+        sum_coverage += row.heading_2sigma;
         sum_tot += s.rmse.total_rad * kDeg;
         sum_incl += s.rmse.inclination_rad * kDeg;
         sum_atot += s.aligned_rmse.total_rad * kDeg;
@@ -259,9 +274,9 @@ int main(int argc, char** argv) {
         worst_settle = std::max(worst_settle, e.settle_time_s);
         ++n;
       }
-      std::printf("MEAN %-41s %7.1f | %6.2f %6s %6.2f | %6.2f %6s %6s | %7s | %7s %7.2f %7.2f %7.1f  (worst)\n", "",
-                  rates[ri], sum_tot / n, "", sum_incl / n, sum_atot / n, "", "", "", "", worst_max, worst_after,
-                  worst_settle);
+      std::printf("MEAN %-41s %7.1f | %6.2f %6s %6.2f | %6.2f %6s %6s | %7s | %7s %7.2f %7.2f %7.1f | %6.1f  (worst)\n",
+                  "", rates[ri], sum_tot / n, "", sum_incl / n, sum_atot / n, "", "", "", "", worst_max, worst_after,
+                  worst_settle, 100.0 * sum_coverage / n);
     }
     if (!anchors.empty()) printSideBySide(rows, rates, anchors);
   } catch (const std::exception& e) {

@@ -42,8 +42,8 @@ ReplayCsvWriter::ReplayCsvWriter(const std::string& path, bool with_gps)
   used_ = static_cast<std::size_t>(
       put(buffer_.get(), with_gps ? "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_mag_deg,declination_deg,"
                                      "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,"
-                                     "mag_disturbed\n"
-                                   : "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg\n") -
+                                     "mag_disturbed,heading_mag_sigma_deg,heading_true_sigma_deg\n"
+                                   : "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg\n") -
       buffer_.get());
 }
 
@@ -55,8 +55,8 @@ void ReplayCsvWriter::write(std::int64_t t_ns, const core::HeadingOutput& h) {
   const core::EstimatorOutput& e = h.attitude;
   p = putSecondsNs(p, t_ns);
   if (!e.valid) {
-    p = put(p, with_gps_ ? ",nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,none,nan,nan,0\n"
-                         : ",nan,nan,nan,nan,nan,nan,nan\n");
+    p = put(p, with_gps_ ? ",nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,none,nan,nan,0,nan,nan\n"
+                         : ",nan,nan,nan,nan,nan,nan,nan,nan\n");
   } else {
     const core::EulerAngles euler = core::eulerZyx(e.q_nb, e.yaw_rad);  // yaw_rad is yawZyx(q_nb)
     for (const double q : {e.q_nb.w(), e.q_nb.x(), e.q_nb.y(), e.q_nb.z()}) {
@@ -79,6 +79,13 @@ void ReplayCsvWriter::write(std::int64_t t_ns, const core::HeadingOutput& h) {
         p = putFixed(p, angle * kDeg, 6);
       }
       p = put(p, e.mag_disturbed ? ",1" : ",0");
+      for (const double sigma : {h.heading_mag_sigma_rad, h.heading_true_sigma_rad}) {
+        *p++ = ',';
+        p = putFixed(p, sigma * kDeg, 6);
+      }
+    } else {
+      *p++ = ',';
+      p = putFixed(p, h.heading_mag_sigma_rad * kDeg, 6);
     }
     *p++ = '\n';
   }

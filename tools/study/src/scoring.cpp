@@ -56,6 +56,18 @@ std::vector<core::OrientationError> perSampleErrors(const Recording& r, const st
   return e;
 }
 
+double headingCoverage(const Recording& r, const std::vector<Quat>& estimates, const std::vector<double>& sigmas_rad,
+                       double k) {
+  std::size_t scored = 0, within = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (!usable(r, estimates, i)) continue;
+    ++scored;
+    const auto e = core::orientationError(estimates[i], core::nedToEnu(r.truth_nb[i]));
+    if (e.heading_rad <= k * sigmas_rad[i]) ++within;
+  }
+  return scored == 0 ? kNan : static_cast<double>(within) / static_cast<double>(scored);
+}
+
 std::vector<Quat> alignedEstimates(const Recording& r, const std::vector<Quat>& estimates) {
   Quat q_e = Quat::Identity(), q_b = Quat::Identity();
   std::vector<Quat> terms;

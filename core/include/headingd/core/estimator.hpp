@@ -17,6 +17,7 @@
 #include "headingd/core/gyro_bias_estimator.hpp"
 #include "headingd/core/heading_corrections.hpp"
 #include "headingd/core/heading_definition.hpp"
+#include "headingd/core/heading_uncertainty.hpp"
 #include "headingd/core/imu_sample.hpp"
 #include "headingd/core/mag_disturbance.hpp"
 #include "headingd/core/sample_gate.hpp"
@@ -48,6 +49,8 @@ struct EstimatorOutput {
   MagDisturbance mag_disturbance;  // which tests fired
   double mag_gain = 0.0;             // K of eq. 4.2 this sample
   double mag_innovation_rad = 0.0;   // ψ_mm - ψ_pred
+  // 1-sigma of yaw_rad's error (heading_uncertainty.hpp); π/√3 while the heading is unknown.
+  double heading_sigma_rad = 0.0;
 };
 
 struct EstimatorCounters {
@@ -94,6 +97,7 @@ class Estimator {
   EstimatorCounters counters() const;
   const EstimatorParams& params() const { return p_; }
   const AttitudeEkf& ekf() const { return ekf_; }
+  const HeadingUncertainty& headingUncertainty() const { return heading_uncertainty_; }
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
   // strength and dip tests of the disturbance detection (Henriksson §4.2).
@@ -109,6 +113,8 @@ class Estimator {
   void correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate_rad_s);
   void restoreGyroHeading();
   void publish(std::int64_t t_ns);
+  // The heading uncertainty's step: the rate error the bias filter allows about the vertical.
+  void predictHeadingUncertainty(double dt_s);
 
   EstimatorParams p_;
   SampleGate gate_;
@@ -123,6 +129,7 @@ class Estimator {
   HeadingCorrectionLog heading_corrections_;
   HeadingDefinitionSelector heading_definition_;
   MagDisturbanceDetector mag_disturbance_;
+  HeadingUncertainty heading_uncertainty_;
   double mag_seconds_ = 0.0;  // time since the first usable field sample
   double vertical_rate_correction_rad_s_ = 0.0;  // the observer's integral term
   double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)

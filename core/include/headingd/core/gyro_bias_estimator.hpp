@@ -69,6 +69,7 @@ class GyroBiasEstimator {
   std::uint64_t stillBlocks() const { return still_blocks_; }
   // Standard deviation of each component (rad/s), from the filter's covariance.
   Vec3 sigma() const { return P_.diagonal().cwiseSqrt(); }
+  const Mat3& covariance() const { return P_; }
 
  private:
   void clampBias();

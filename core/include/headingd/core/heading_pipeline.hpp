@@ -30,6 +30,10 @@ struct HeadingOutput {
   double mount_yaw_rad = 0.0;      // sensor turned from body about down (gait_mount_yaw.hpp)
   double mount_yaw_sigma_rad = 0.0;
   double heading_true_rad = 0.0;   // the body's heading from geographic north
+  // 1-sigma of heading_mag_rad (the estimator's heading_sigma_rad), and of heading_true_rad:
+  // that with the mounting yaw's and the declination's (∞ while no declination is known).
+  double heading_mag_sigma_rad = 0.0;
+  double heading_true_sigma_rad = 0.0;
 };
 
 class HeadingPipeline {

@@ -35,6 +35,11 @@ struct RunScore {
 };
 RunScore score(const Recording& r, const std::vector<core::Quat>& estimates);
 
+// Share (0-1) of the scored samples whose heading error lies within k of the stated 1-sigma
+// (sigmas_rad: the estimator's heading_sigma_rad after each sample); NaN with none scored.
+double headingCoverage(const Recording& r, const std::vector<core::Quat>& estimates,
+                       const std::vector<double>& sigmas_rad, double k);
+
 // A motion between rests: from the first to the last scored sample.
 struct EpisodeScore {
   double motion_start_s = 0.0;

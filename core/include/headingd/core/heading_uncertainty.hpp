@@ -1,0 +1,67 @@
+#pragma once
+// How far the published magnetic heading may be off: the variance of the heading observer's
+// error (Henriksson eq. 4.2), carried through what the estimator actually does to it rather
+// than through an optimal filter's formula, so that it stays honest while the observer runs
+// on its fixed gain, on the gyro alone (disturbed field, eq. 4.3) or at its start.
+//
+// Three errors are carried jointly (a 3×3 covariance, a few dozen flops per sample):
+//   e  the heading error (estimate - truth, about NED down, rad);
+//   b  the error of the rate the heading integrates about the vertical (rad/s): what the gyro
+//      bias estimate gets wrong about the vertical. Between samples e grows by b·dt;
+//   u  the error of the heading the field shows (rad): what the disturbance tests do not see
+//      (a building's field, the residual hard iron of a calibration, seen differently at each
+//      heading, the tilt error through the dip). A first-order Gauss-Markov process: it
+//      changes as the person moves on and turns. Its variance is a floor (field_sigma_rad) plus
+//      what the innovations show of it (observeInnovation): a field that disagrees with the
+//      gyro from place to place says that its errors are larger here.
+// A field sample used with gain K (eq. 4.2) makes e ← (1 - K) e + K u; the observer's
+// integral term, when on, makes b ← b + g (u - e) with its own gain g. Before the first field
+// sample the heading is unknown: σ is that of an angle uniform on the circle (π/√3).
+#include <Eigen/Core>
+
+namespace headingd::core {
+
+// The estimator's values and how they were chosen: estimator_params.hpp (heading_field_*).
+struct HeadingUncertaintyParams {
+  double field_sigma_rad = 0.0;             // σ of u at least (steady state)
+  double field_correlation_s = 1.0;         // u's correlation time, and the innovations' average
+  double rate_walk_rad_s_per_sqrt_s = 0.0;  // b wanders as the gyro bias does
+};
+
+class HeadingUncertainty {
+ public:
+  explicit HeadingUncertainty(const HeadingUncertaintyParams& params) : p_(params) {}
+
+  // The heading is unknown again (start, a gap in the samples): the next field sample sets it.
+  void forget();
+
+  // One sample of dt_s: e integrates b, b is at most as uncertain as the gyro bias filter says
+  // about the vertical (rate_variance, (rad/s)²), and u decorrelates towards its steady state.
+  void predict(double dt_s, double rate_variance);
+
+  // The innovation ψ_mm - ψ of a field sample that was used: what of u the field shows. Its
+  // mean over a second (the magnetometer's white noise averaged away) is squared and
+  // averaged over field_correlation_s; that variance adds to u's steady state.
+  void observeInnovation(double innovation_rad, double dt_s);
+
+  // A field sample corrected the heading by `gain` × innovation (eq. 4.2; gain 1 sets it),
+  // and the integral term moved the vertical rate by `rate_gain` × innovation (0: off).
+  void correct(double gain, double rate_gain);
+
+  bool known() const { return known_; }
+  double sigmaRad() const;
+  // Standard deviation of b, the rate error about the vertical (rad/s).
+  double rateSigmaRadS() const;
+
+ private:
+  HeadingUncertaintyParams p_;
+  Eigen::Matrix3d P_ = Eigen::Matrix3d::Zero();  // over (e, b, u)
+  bool known_ = false;
+  bool rate_started_ = false;   // P_(1, 1) has been set from the bias filter
+  bool field_started_ = false;  // P_(2, 2) has been set
+  double innovation_mean_rad_ = 0.0;     // over about a second
+  double innovation_variance_ = 0.0;     // of that mean, over field_correlation_s
+  bool innovation_started_ = false;
+};
+
+}  // namespace headingd::core

@@ -1,0 +1,98 @@
+#include "headingd/core/heading_uncertainty.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace headingd::core {
+namespace {
+
+constexpr int kE = 0, kB = 1, kU = 2;
+
+// Standard deviation of an angle uniform on the circle: π/√3 (104°).
+const double kUnknownSigmaRad = std::numbers::pi / std::sqrt(3.0);
+
+// The innovations are averaged over this long before they are squared: long enough that a
+// consumer magnetometer's white noise (a few degrees per sample at 100 Hz) averages away,
+// short against the observer's time constant, whose error is what is left.
+constexpr double kInnovationMeanS = 1.0;
+
+}  // namespace
+
+void HeadingUncertainty::forget() {
+  known_ = false;
+  // e is undefined until the field sets it: no correlation with b or u is kept.
+  P_.row(kE).setZero();
+  P_.col(kE).setZero();
+}
+
+void HeadingUncertainty::predict(double dt_s, double rate_variance) {
+  // b: the gyro bias filter's vertical variance, unless the integral term has learned more
+  // (then b's own variance, which only the integral term lowers, is the smaller). Rescaling
+  // b's row and column keeps the correlations and P positive semi-definite.
+  const double walk = p_.rate_walk_rad_s_per_sqrt_s * p_.rate_walk_rad_s_per_sqrt_s * dt_s;
+  const double b_variance = rate_started_ ? std::min(P_(kB, kB) + walk, rate_variance) : rate_variance;
+  if (P_(kB, kB) > 0.0) {
+    const double scale = std::sqrt(b_variance / P_(kB, kB));
+    P_.row(kB) *= scale;
+    P_.col(kB) *= scale;
+  } else {
+    P_(kB, kB) = b_variance;
+  }
+  rate_started_ = true;
+  // e ← e + b dt.
+  if (known_) {
+    P_(kE, kE) += 2.0 * dt_s * P_(kE, kB) + dt_s * dt_s * P_(kB, kB);
+    P_(kE, kB) += dt_s * P_(kB, kB);
+    P_(kE, kU) += dt_s * P_(kB, kU);
+    P_(kB, kE) = P_(kE, kB);
+    P_(kU, kE) = P_(kE, kU);
+  }
+  // u ← φ u + w, φ = exp(-dt/T), var w = (1 - φ²) σ_u².
+  const double phi = std::exp(-dt_s / p_.field_correlation_s);
+  const double steady = p_.field_sigma_rad * p_.field_sigma_rad + innovation_variance_;
+  if (!field_started_) {
+    P_(kU, kU) = steady;  // the first sample: u in its steady state
+    field_started_ = true;
+    return;
+  }
+  P_.row(kU) *= phi;
+  P_.col(kU) *= phi;
+  P_(kU, kU) += (1.0 - phi * phi) * steady;
+}
+
+void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
+  if (!innovation_started_) {
+    innovation_mean_rad_ = innovation_rad;
+    innovation_variance_ = innovation_rad * innovation_rad;
+    innovation_started_ = true;
+    return;
+  }
+  innovation_mean_rad_ += (1.0 - std::exp(-dt_s / kInnovationMeanS)) * (innovation_rad - innovation_mean_rad_);
+  const double squared = innovation_mean_rad_ * innovation_mean_rad_;
+  innovation_variance_ += (1.0 - std::exp(-dt_s / p_.field_correlation_s)) * (squared - innovation_variance_);
+}
+
+void HeadingUncertainty::correct(double gain, double rate_gain) {
+  // x ← A x with e ← (1 - K) e + K u (innovation = ψ_mm - ψ = u - e) and b ← b + g (u - e)
+  // (the integral term's rate moves by g × innovation): P ← A P Aᵀ.
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+  A(kE, kE) = 1.0 - gain;
+  A(kE, kU) = gain;
+  A(kB, kE) = -rate_gain;
+  A(kB, kU) = rate_gain;
+  if (!known_) {
+    // The field sets the heading outright: e = u from now on.
+    A(kE, kE) = 0.0;
+    A(kE, kU) = 1.0;
+    known_ = true;
+  }
+  P_ = A * P_ * A.transpose();
+}
+
+double HeadingUncertainty::sigmaRad() const {
+  return known_ ? std::sqrt(std::max(P_(kE, kE), 0.0)) : kUnknownSigmaRad;
+}
+
+double HeadingUncertainty::rateSigmaRadS() const { return std::sqrt(std::max(P_(kB, kB), 0.0)); }
+
+}  // namespace headingd::core

@@ -1,0 +1,141 @@
+// The heading's 1-sigma (heading_uncertainty.hpp) must be what the observer's error really
+// is: the same schedule of gains applied to many draws of the errors it models gives the
+// spread the class states, while the field is used, while it is not, and with the integral
+// term on.
+#include "headingd/core/heading_uncertainty.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "headingd/core/mag_heading_observer.hpp"
+#include "test_support.hpp"
+
+namespace headingd::core {
+namespace {
+
+using test::kDeg;
+
+constexpr double kDt = 0.01;
+
+struct Draw {
+  double e = 0.0, b = 0.0, u = 0.0;
+};
+
+// One step of the schedule: the field is used with `gain` (none while disturbed) and the
+// integral term's gain `rate_gain`. Applied to the class and to every draw alike.
+struct Step {
+  bool field_used;
+  double gain;
+  double rate_gain;
+};
+
+class MonteCarlo {
+ public:
+  MonteCarlo(const HeadingUncertaintyParams& p, double rate_sigma, int draws, std::uint32_t seed)
+      : p_(p), rate_sigma_(rate_sigma), rng_(seed), draws_(draws) {
+    for (Draw& d : draws_) {
+      d.b = rng_.normal(rate_sigma);
+      d.u = rng_.normal(p.field_sigma_rad);
+    }
+  }
+  void step(HeadingUncertainty& model, const Step& s) {
+    model.predict(kDt, rate_sigma_ * rate_sigma_);
+    const double phi = std::exp(-kDt / p_.field_correlation_s);
+    const double w = p_.field_sigma_rad * std::sqrt(1.0 - phi * phi);
+    for (Draw& d : draws_) {
+      d.e += d.b * kDt;
+      d.u = phi * d.u + rng_.normal(w);
+    }
+    if (!s.field_used) return;
+    const bool first = !model.known();
+    model.correct(s.gain, s.rate_gain);
+    for (Draw& d : draws_) {
+      const double innovation = d.u - d.e;
+      d.e = first ? d.u : d.e + s.gain * innovation;
+      d.b += s.rate_gain * innovation;
+    }
+  }
+  double spreadOfE() const {
+    double sum = 0.0;
+    for (const Draw& d : draws_) sum += d.e * d.e;
+    return std::sqrt(sum / static_cast<double>(draws_.size()));
+  }
+
+ private:
+  HeadingUncertaintyParams p_;
+  double rate_sigma_;
+  test::Random rng_;
+  std::vector<Draw> draws_;
+};
+
+TEST(HeadingUncertainty, IsThatOfAnAngleUniformOnTheCircleUntilTheFirstFieldSample) {
+  HeadingUncertainty h({0.035, 10.0, 0.0});
+  EXPECT_FALSE(h.known());
+  h.predict(kDt, 1e-6);
+  EXPECT_NEAR(h.sigmaRad(), std::numbers::pi / std::sqrt(3.0), 1e-12);
+  h.correct(1.0, 0.0);
+  EXPECT_TRUE(h.known());
+  EXPECT_NEAR(h.sigmaRad(), 0.035, 1e-9);  // the field's own error
+  h.forget();
+  EXPECT_FALSE(h.known());
+  EXPECT_NEAR(h.sigmaRad(), std::numbers::pi / std::sqrt(3.0), 1e-12);
+}
+
+TEST(HeadingUncertainty, StatesTheSpreadOfTheObserversErrorUsedDisturbedAndUsedAgain) {
+  const HeadingUncertaintyParams p{2.0 * kDeg, 5.0, 0.0};
+  const double rate_sigma = 0.002;  // rad/s: a bias learned at rest, to 0.1 deg/s
+  HeadingUncertainty model(p);
+  MonteCarlo mc(p, rate_sigma, 1000, 7);
+  const double gain = magObserverGain(kDt, 15.0);
+  double seconds = 0.0;
+  // 60 s with the field (after the first sample's outright set), 20 s disturbed, 60 s again.
+  const struct {
+    double duration_s;
+    bool field_used;
+  } phases[] = {{60.0, true}, {20.0, false}, {60.0, true}};
+  for (const auto& phase : phases) {
+    for (int i = 0; i < static_cast<int>(phase.duration_s / kDt); ++i, seconds += kDt) {
+      mc.step(model, {phase.field_used, gain, 0.0});
+    }
+    SCOPED_TRACE(seconds);
+    EXPECT_NEAR(model.sigmaRad() / mc.spreadOfE(), 1.0, 0.08);  // 1000 draws: 2.2 % per σ
+  }
+  // While disturbed the error grew by the rate error over 20 s (0.04 rad): the class said so.
+  EXPECT_GT(model.sigmaRad(), 0.5 * kDeg);
+}
+
+TEST(HeadingUncertainty, WithTheIntegralTermTheRateErrorItLearnsLeavesTheSpread) {
+  const HeadingUncertaintyParams p{1.0 * kDeg, 2.0, 0.0};
+  const double rate_sigma = 0.01;  // no rest: a rate error of 0.6 deg/s may be there
+  HeadingUncertainty model(p);
+  MonteCarlo mc(p, rate_sigma, 1000, 11);
+  const double gain = magObserverGain(kDt, 15.0);
+  const double rate_gain = kDt / (15.0 * 60.0);
+  for (int i = 0; i < 20'000; ++i) mc.step(model, {true, gain, rate_gain});
+  EXPECT_NEAR(model.sigmaRad() / mc.spreadOfE(), 1.0, 0.08);  // 1000 draws: 2.2 % per σ
+  // The integral term has learned most of the rate error, and the class knows it.
+  EXPECT_LT(model.rateSigmaRadS(), 0.3 * rate_sigma);
+}
+
+TEST(HeadingUncertainty, AFieldThatShowsItsErrorsRaisesTheSigma) {
+  const HeadingUncertaintyParams p{1.0 * kDeg, 10.0, 0.0};
+  HeadingUncertainty quiet(p), shown(p);
+  test::Random rng(3);
+  const double gain = magObserverGain(kDt, 15.0);
+  double innovation = 0.0;
+  for (int i = 0; i < 6000; ++i) {
+    // The field's heading wanders by 5 deg over a few seconds: innovations show it.
+    innovation = 0.999 * innovation + rng.normal(5.0 * kDeg * std::sqrt(1.0 - 0.999 * 0.999));
+    for (HeadingUncertainty* h : {&quiet, &shown}) h->predict(kDt, 1e-8);
+    shown.observeInnovation(innovation, kDt);
+    quiet.correct(gain, 0.0);
+    shown.correct(gain, 0.0);
+  }
+  EXPECT_GT(shown.sigmaRad(), 2.0 * quiet.sigmaRad());
+}
+
+}  // namespace
+}  // namespace headingd::core
