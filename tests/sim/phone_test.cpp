@@ -1,7 +1,8 @@
 // The phone grade and the phone scenarios (issue 28): the grade's drawn values lie in their
-// ranges, the magnetometer is held between its samples at the drawn rate and lags the gyro by
-// the drawn lag, the true gyro bias is exposed, and each carry mode moves the phone as its
-// comment says; every phone scenario starts with a short rest of zero true rate.
+// ranges, the magnetometer is held between its samples at the drawn rate, it and the
+// accelerometer lag the gyro by the drawn lags, the true gyro bias is exposed, and each carry
+// mode moves the phone as its comment says; every phone scenario starts with a short rest of
+// zero true rate.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -137,6 +138,38 @@ TEST(PhoneMagnetometer, LagsTheGyroByTheDrawnLag) {
       if (cost < best_cost) best_cost = cost, best_lag = 1e-3 * lag_ms;
     }
     EXPECT_NEAR(best_lag, r.timing.mag_lag_s, 0.0015) << "seed " << seed;
+  }
+}
+
+TEST(PhoneAccelerometer, LagsTheGyroByTheDrawnLag) {
+  // The interval-mean specific force of each row from the true motion, shifted by candidate
+  // lags (linear between rows): the drawn lag fits the readings best.
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const sim::SimResult& r = run(config("phone-swinging", seed, sim::ImuGrade::kPhone));
+    const auto& states = r.trajectory.states;
+    std::vector<Vec3> mean(states.size());
+    Vec3 previous = Vec3::Zero();
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      const Vec3 point = r.imu[k].q_ns.conjugate() * (states[k].accel_ned_mps2 - Vec3(0.0, 0.0, sim::kGravity_m_s2));
+      mean[k] = k == 0 ? point : Vec3(0.5 * (previous + point));
+      previous = point;
+    }
+    const core::Mat3 d_inverse = r.accel.distortion.inverse();
+    const double rate = r.config.imu_rate_hz;
+    double best_lag = -1.0, best_cost = 1e300;
+    for (int lag_tenths_ms = 0; lag_tenths_ms <= 80; lag_tenths_ms += 2) {
+      const double lag = 1e-4 * lag_tenths_ms;
+      double cost = 0.0;
+      for (std::size_t k = 10; k < r.imu.size(); ++k) {
+        const double x = (r.imu[k].t_s - lag) * rate;
+        const auto i = static_cast<std::size_t>(x);
+        const double w = x - static_cast<double>(i);
+        const Vec3 expected = (1.0 - w) * mean[i] + w * mean[std::min(i + 1, mean.size() - 1)];
+        cost += (d_inverse * (r.imu[k].accel_m_s2 - r.accel.offset) - expected).squaredNorm();
+      }
+      if (cost < best_cost) best_cost = cost, best_lag = lag;
+    }
+    EXPECT_NEAR(best_lag, r.timing.accel_lag_s, 0.0003) << "seed " << seed;
   }
 }
 
