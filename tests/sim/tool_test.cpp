@@ -63,7 +63,8 @@ TEST_F(SimTool, HelpStatesTheConventionsAndListsTheScenarios) {
   const std::string help = out();
   for (const char* text : {"TRUE attitude q_nb of the", "SENSOR, mapping sensor axes to NED", "12:00:00",
                            "thesis-declination (244 s)", "urban-walk (600 s)", "static-disturbed (120 s)",
-                           "crawl (116 s)", "run (180 s)"}) {
+                           "crawl (116 s)", "run (180 s)", "phone-texting (", "phone-calling (", "phone-swinging (",
+                           "phone-pocket (", "phone-running (", "phone (drawn per seed"}) {
     EXPECT_NE(help.find(text), std::string::npos) << text;
   }
 }
@@ -77,6 +78,18 @@ TEST_F(SimTool, BadArgumentsExitWithTwo) {
   EXPECT_EQ(run("--scenario crawl --seed 1 --imu-grade perfect" + out_dir), 2);
   EXPECT_EQ(run("--scenario crawl" + out_dir), 2);  // --seed is required
   EXPECT_FALSE(fs::exists(dir_ / "x"));
+}
+
+TEST_F(SimTool, PhoneGradeWritesItsTimingAndTheTrueGyroBias) {
+  ASSERT_EQ(run("--scenario phone-pocket --seed 3 --imu-grade phone --rate-hz 50 --out-dir '" + (dir_ / "p").string() + "'"),
+            0)
+      << err();
+  const std::string errors = slurp(dir_ / "p" / "sensor_errors.toml");
+  for (const char* text : {"imu_grade = \"phone\"", "[timing]", "mag_rate_hz = ", "mag_lag_s = ", "accel_lag_s = "}) {
+    EXPECT_NE(errors.find(text), std::string::npos) << text;
+  }
+  const std::string truth = slurp(dir_ / "p" / "truth.csv");
+  EXPECT_NE(truth.substr(0, truth.find('\n')).find(",gyro_bias_x,gyro_bias_y,gyro_bias_z"), std::string::npos);
 }
 
 TEST_F(SimTool, UnwritableDirectoryExitsWithOne) {

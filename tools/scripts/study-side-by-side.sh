@@ -6,14 +6,16 @@
 # inclination after one constant earth and body rotation are fitted per filter). A study, not
 # a test: it prints numbers and judges nothing.
 #
-# Usage: study-side-by-side.sh [--build DIR] [--seeds N] [--rates "100 50"] [--grades "mems consumer"]
-#                              [--only sim|broad|phones] [--set 'key = value' ...]
+# Usage: study-side-by-side.sh [--build DIR] [--seeds N] [--rates "100 50"] [--grades "mems consumer phone"]
+#                              [--only sim|broad|phones] [--scenarios "phone-texting ..."] [--set 'key = value' ...]
 # The comparators are ../shared/anchors (VQF and Fusion as their authors publish them), built
 # by their own build.sh into DIR/anchors; without ../shared/anchors only headingd is run, and
 # the output says so.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
-build="$here/build" seeds=5 rates="100 50" grades="mems consumer" only="" sets=()
+build="$here/build" seeds=5 rates="100 50" grades="mems consumer phone" only="" sets=()
+scenarios="urban-walk run crawl thesis-declination shake shake-any handheld slow-rotation
+           phone-texting phone-calling phone-swinging phone-pocket phone-running"
 while [[ $# -gt 0 ]]; do
   case $1 in
     --build) build=$2; shift 2 ;;
@@ -21,6 +23,7 @@ while [[ $# -gt 0 ]]; do
     --rates) rates=$2; shift 2 ;;
     --grades) grades=$2; shift 2 ;;
     --only) only=$2; shift 2 ;;
+    --scenarios) scenarios=$2; shift 2 ;;
     --set) sets+=(--set "$2"); shift 2 ;;
     *) sed -n '2,15p' "$0" >&2; exit 2 ;;
   esac
@@ -45,15 +48,17 @@ table() {  # table TITLE -- study arguments
     /^side by side/ { side = 1; next }
     side && /^run / { n = split($0, h, "|"); printf "| run | Hz |"; for (i = 2; i <= n; ++i) { gsub(/ /, "", h[i]); printf " %s plain | %s fitted tot / head / incl |", h[i], h[i] } print ""
                       printf "|---|---:|"; for (i = 2; i <= n; ++i) printf "---:|---:|"; print ""; next }
-    side { n = split($0, f, "|"); split(f[1], a, " "); name = (a[1] == "SIDE-MEAN") ? "**mean**" : a[1]
-           hz = (a[length(a)] == "0.0") ? "native" : a[length(a)]
+    side { n = split($0, f, "|"); na = split(f[1], a, " ")
+           name = a[1]; for (j = 2; j < na; ++j) name = name " " a[j]  # e.g. "phone-pocket seed 3"
+           if (a[1] == "SIDE-MEAN") name = "**mean**"
+           hz = (a[na] == "0.0") ? "native" : a[na]
            printf "| %s | %s |", name, hz
            for (i = 2; i <= n; ++i) { gsub(/\/ +/, "/", f[i]); split(f[i], v, " "); printf " %s | %s |", v[1], v[2] } print "" }
     !side && /^MEAN/ && anchors == 0 { print "| mean | " $2 " | " $3 " |" }'
 }
 
 if [[ -z $only || $only == sim ]]; then
-  for scenario in urban-walk run crawl thesis-declination shake shake-any handheld slow-rotation; do
+  for scenario in $scenarios; do
     for grade in $grades; do
       for rate in $rates; do
         table "sim $scenario, $grade, $rate Hz, seeds 1-$seeds" sim --scenario "$scenario" --grade "$grade" \

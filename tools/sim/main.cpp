@@ -78,7 +78,8 @@ int main(int argc, char** argv) {
       "             moving = 1 while the person moves (walks, turns, gets up or down).\n"
       "  gps.nmea   NMEA 0183 GGA, RMC, VTG per epoch (CRLF, valid checksums), in time order.\n"
       "  truth.csv  per IMU row: heading_true_deg (body x-axis from geographic north), heading_mag_deg\n"
-      "             (= heading_true - declination), declination_deg (WMM + --decl-anomaly-deg), lat/lon, pose, field.\n"
+      "             (= heading_true - declination), declination_deg (WMM + --decl-anomaly-deg), lat/lon, pose, field,\n"
+      "             gyro_bias_x/y/z (the gyro's true constant + drifting bias in this row, sensor axes, rad/s).\n"
       "  gps_truth.csv, sensor_errors.toml   receiver output next to the truth; the drawn IMU errors.\n"
       "Time alignment: the first IMU row is t = 0, row k is t = k/rate. GPS epoch j describes t = j/gps_rate on the\n"
       "same axis, and its sentences carry UTC = --date 12:00:00 + t. So t of an NMEA line = its UTC - (date 12:00:00).\n"
@@ -102,7 +103,9 @@ int main(int argc, char** argv) {
   app.add_option("--imu-grade", grade,
                  "IMU errors: consumer (calibrated consumer MEMS, a 2014 smartphone's white noise), mems (the "
                  "same with current datasheets' white noise), uncalibrated (consumer plus Kok & Schon's raw "
-                 "magnetometer distortion), ideal (none)")
+                 "magnetometer distortion), phone (drawn per seed: gyro noise 0.003-0.02 rad/s per sample at 100 Hz, "
+                 "constant gyro bias up to 6 deg/s, magnetometer at 25-50 Hz held between samples and 20-40 ms "
+                 "late, accelerometer 0-5 ms late), ideal (none)")
       ->capture_default_str();
   std::string sampling = "interval";
   app.add_option("--vector-sampling", sampling,

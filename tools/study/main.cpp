@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
   double settle_s = 5.0;
   simulate->add_option("--scenario", scenario, "headingd-sim scenario")->required();
   simulate->add_option("--seeds", seeds_text, "e.g. 1-20 or 1,5,9")->capture_default_str();
-  simulate->add_option("--grade", grade, "IMU grade: consumer, uncalibrated, ideal")->capture_default_str();
+  simulate->add_option("--grade", grade, "IMU grade: consumer, mems, uncalibrated, phone, ideal")->capture_default_str();
   simulate->add_option("--settle", settle_s, "seconds after the motion from which the recovery is scored")
       ->capture_default_str();
   simulate->add_option("--cof", cof, "WMM coefficients")->capture_default_str();

@@ -1,5 +1,7 @@
 #include "headingd/sim/imu_model.hpp"
 
+#include "headingd/sim/phone_imu.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -112,15 +114,18 @@ const char* imuGradeName(ImuGrade g) {
     case ImuGrade::kConsumer: return "consumer";
     case ImuGrade::kUncalibrated: return "uncalibrated";
     case ImuGrade::kMems: return "mems";
+    case ImuGrade::kPhone: return "phone";
   }
   return "unknown";
 }
 
 ImuGrade parseImuGrade(std::string_view name) {
-  for (const ImuGrade g : {ImuGrade::kIdeal, ImuGrade::kConsumer, ImuGrade::kUncalibrated, ImuGrade::kMems}) {
+  for (const ImuGrade g :
+       {ImuGrade::kIdeal, ImuGrade::kConsumer, ImuGrade::kUncalibrated, ImuGrade::kMems, ImuGrade::kPhone}) {
     if (name == imuGradeName(g)) return g;
   }
-  throw std::invalid_argument("unknown IMU grade '" + std::string(name) + "' (ideal, consumer, uncalibrated, mems)");
+  throw std::invalid_argument("unknown IMU grade '" + std::string(name) +
+                              "' (ideal, consumer, uncalibrated, mems, phone)");
 }
 
 ImuErrorParams imuErrorParams(ImuGrade grade, double field_strength_uT) {
@@ -129,9 +134,19 @@ ImuErrorParams imuErrorParams(ImuGrade grade, double field_strength_uT) {
     case ImuGrade::kConsumer: return {consumerGyro(), consumerAccel(), consumerMag(field_strength_uT)};
     case ImuGrade::kUncalibrated: return {consumerGyro(), consumerAccel(), uncalibratedMag(field_strength_uT)};
     case ImuGrade::kMems: return memsErrors(field_strength_uT);
+    case ImuGrade::kPhone: break;
   }
-  return {};
+  throw std::invalid_argument(std::string("IMU grade '") + imuGradeName(grade) + "' is drawn per seed (imuModel)");
 }
+
+ImuModel imuModel(ImuGrade grade, double field_strength_uT, Rng rng) {
+  if (grade == ImuGrade::kPhone) return drawPhoneImu(field_strength_uT, rng);
+  return {imuErrorParams(grade, field_strength_uT), SensorTiming{}};
+}
+
+TriadErrorParams consumerGyroErrors() { return consumerGyro(); }
+TriadErrorParams consumerAccelErrors() { return consumerAccel(); }
+TriadErrorParams consumerMagErrors(double field_uT) { return consumerMag(field_uT); }
 
 TriadSensor::TriadSensor(const TriadErrorParams& params, double rate_hz, Rng rng)
     : p_(params), dt_s_(1.0 / rate_hz), rng_(rng) {
@@ -145,7 +160,9 @@ TriadSensor::TriadSensor(const TriadErrorParams& params, double rate_hz, Rng rng
                       Eigen::AngleAxisd(rot(2), Vec3::UnitX()))
                          .toRotationMatrix();
   d_ = scale.asDiagonal() * skewMatrix(skew(0), skew(1), skew(2)) * d_rot;  // Kok & Schön eq. 31
-  for (int i = 0; i < 3; ++i) offset_(i) = rng_.uniform(-p_.offset_half_width(i), p_.offset_half_width(i));
+  for (int i = 0; i < 3; ++i) {
+    offset_(i) = rng_.uniform(-p_.offset_half_width(i), p_.offset_half_width(i)) + p_.offset_drawn(i);
+  }
   // The Gauss-Markov bias starts in its stationary distribution.
   markov_ = p_.markov_sigma.cwiseProduct(rng_.gaussian3());
   const double rate = 1.0 / dt_s_;

@@ -88,9 +88,11 @@ void writeTruthCsv(std::ostream& out, const SimResult& r) {
     append(line, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,", e.pitch_rad * kRadToDeg, e.roll_rad * kRadToDeg,
            deg360(core::redefinedHeadingOf(s.q_nb)), core::headHeight(s.q_nb), deg360(s.path_heading_rad),
            std::hypot(s.velocity_ned_mps.x(), s.velocity_ned_mps.y()));
-    append(line, "%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f\n", s.position_ned_m.x(),
+    append(line, "%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f,", s.position_ned_m.x(),
            s.position_ned_m.y(), s.position_ned_m.z(), f.x(), f.y(), f.z(), r.disturbance_ned_uT[k].norm(), q.w(),
            q.x(), q.y(), q.z());
+    const Vec3& b = r.imu[k].gyro_bias_rad_s;
+    append(line, "%.9g,%.9g,%.9g\n", b.x(), b.y(), b.z());
     out << line;
   }
 }
@@ -155,6 +157,13 @@ void writeSensorErrors(std::ostream& out, const SimResult& r) {
   triad("gyro", r.gyro, "rad/s");
   triad("accel", r.accel, "m/s^2");
   triad("mag", r.mag, "uT");
+  if (!r.timing.isDefault()) {
+    const SensorTiming& t = r.timing;
+    append(s, "\n[timing]  # the magnetometer's own rate (its last sample repeated between), its and the "
+              "accelerometer's lag behind the gyro\n");
+    append(s, "mag_rate_hz = %.9g\nmag_first_sample_s = %.9g\nmag_lag_s = %.9g\naccel_lag_s = %.9g\n",
+           t.mag_rate_hz, t.mag_first_sample_s, t.mag_lag_s, t.accel_lag_s);
+  }
   out << s;
 }
 

@@ -7,6 +7,7 @@
 #include "headingd/sim/scenario.hpp"
 #include "headingd/sim/calibration_scenarios.hpp"
 #include "headingd/sim/motion_scenarios.hpp"
+#include "headingd/sim/phone_scenarios.hpp"
 
 namespace headingd::sim {
 
@@ -193,9 +194,11 @@ PhaseTime phaseAt(const Scenario& s, double t_s) {
 }
 
 std::vector<std::string> scenarioNames() {
-  return {"thesis-declination", "urban-walk", "static-disturbed", "crawl", "run",
-          "calib-six-position", "calib-rotation", "calib-rotation-long",
-          "shake", "shake-any", "handheld", "slow-rotation"};
+  std::vector<std::string> names = {"thesis-declination", "urban-walk", "static-disturbed", "crawl", "run",
+                                    "calib-six-position", "calib-rotation", "calib-rotation-long",
+                                    "shake", "shake-any", "handheld", "slow-rotation"};
+  for (std::string& name : phoneScenarioNames()) names.push_back(std::move(name));
+  return names;
 }
 
 Scenario makeScenario(std::string_view name, std::uint64_t seed) {
@@ -219,6 +222,7 @@ Scenario makeScenario(std::string_view name, std::uint64_t seed) {
   }
   if (name == "handheld") return handheldScenario(seed);
   if (name == "slow-rotation") return slowRotationScenario(seed);
+  if (isPhoneScenario(std::string(name))) return phoneScenario(std::string(name), seed);
   throw std::invalid_argument("unknown scenario '" + std::string(name) + "'");
 }
 

@@ -1,6 +1,9 @@
 #include "headingd/sim/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <numbers>
 #include <stdexcept>
 
@@ -16,7 +19,7 @@ using core::Vec3;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Stream ids of Rng::stream: one per part of the model, so that they stay independent.
-enum Stream : std::uint64_t { kTrajectory = 1, kField, kGyro, kAccel, kMag, kGps };
+enum Stream : std::uint64_t { kTrajectory = 1, kField, kGyro, kAccel, kMag, kGps, kImuDraw };
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
@@ -87,49 +90,103 @@ SimResult simulate(const SimConfig& config, const Scenario& scenario, const core
   r.q_bs = core::headingRotation(config.mount_yaw_deg * kDeg);
   r.trajectory = generateTrajectory(r.scenario, config.imu_rate_hz, Rng::stream(config.seed, kTrajectory));
 
-  const ImuErrorParams errors = imuErrorParams(config.imu_grade, field.earthFieldNed_uT().norm());
-  TriadSensor gyro(errors.gyro, config.imu_rate_hz, Rng::stream(config.seed, kGyro));
-  TriadSensor accel(errors.accel, config.imu_rate_hz, Rng::stream(config.seed, kAccel));
-  TriadSensor mag(errors.mag, config.imu_rate_hz, Rng::stream(config.seed, kMag));
+  const ImuModel model =
+      imuModel(config.imu_grade, field.earthFieldNed_uT().norm(), Rng::stream(config.seed, kImuDraw));
+  r.timing = model.timing;
+  const SensorTiming& timing = model.timing;
+  const bool slow_mag = timing.mag_rate_hz > 0.0;
+  TriadSensor gyro(model.errors.gyro, config.imu_rate_hz, Rng::stream(config.seed, kGyro));
+  TriadSensor accel(model.errors.accel, config.imu_rate_hz, Rng::stream(config.seed, kAccel));
+  TriadSensor mag(model.errors.mag, slow_mag ? timing.mag_rate_hz : config.imu_rate_hz, Rng::stream(config.seed, kMag));
   r.gyro = {gyro.distortion(), gyro.offset(), gyro.whiteSigma()};
   r.accel = {accel.distortion(), accel.offset(), accel.whiteSigma()};
   r.mag = {mag.distortion(), mag.offset(), mag.whiteSigma()};
 
+  // First the true signals of every row, then the sensors read them (a late sensor reads an
+  // earlier row's).
   const double dt = 1.0 / config.imu_rate_hz;
   const Vec3 gravity_ned(0.0, 0.0, kGravity_m_s2);
-  Quat q_ns_previous = (r.trajectory.q_nb_before_start * r.q_bs).normalized();
   const auto& states = r.trajectory.states;
-  r.imu.reserve(states.size());
-  r.field_ned_uT.reserve(states.size());
-  r.disturbance_ned_uT.reserve(states.size());
+  const std::size_t rows = states.size();
+  std::vector<Quat> q_ns(rows);
+  std::vector<Vec3> gyro_true(rows), accel_true(rows), mag_true(rows);
+  r.field_ned_uT.reserve(rows);
+  r.disturbance_ned_uT.reserve(rows);
+  Quat q_ns_previous =
+      (r.trajectory.q_nb_before_start * r.trajectory.q_b_sensor_before_start * r.q_bs).normalized();
   Vec3 accel_previous = Vec3::Zero(), mag_previous = Vec3::Zero();  // point values at t_{k-1}
-  for (const TruthState& s : states) {
-    const Quat q_ns = (s.q_nb * r.q_bs).normalized();
+  for (std::size_t k = 0; k < rows; ++k) {
+    const TruthState& s = states[k];
+    q_ns[k] = (s.q_nb * s.q_b_sensor * r.q_bs).normalized();
     const Vec3 disturbance = field.disturbanceNed_uT(s.t_s, s.position_ned_m);
     const Vec3 field_ned = field.earthFieldNed_uT() + disturbance;
     // Row k's rate covers (t_{k-1}, t_k]: q_k = q_{k-1} ⊗ exp(½ ω_k Δt), the way the
     // estimator integrates a sample over the interval that ends at it.
-    const Vec3 gyro_true = rateBetween(q_ns_previous, q_ns, dt);
-    const Vec3 accel_point = q_ns.conjugate() * (s.accel_ned_mps2 - gravity_ned);  // f_s = R_nsᵀ (a_n - g_n)
-    const Vec3 mag_point = q_ns.conjugate() * field_ned;
+    gyro_true[k] = rateBetween(q_ns_previous, q_ns[k], dt);
+    const Vec3 accel_point = q_ns[k].conjugate() * (s.accel_ned_mps2 - gravity_ned);  // f_s = R_nsᵀ (a_n - g_n)
+    const Vec3 mag_point = q_ns[k].conjugate() * field_ned;
     // An interval-mean sensor reports the mean over (t_{k-1}, t_k] (trapezoid rule, in its own
     // turning axes); the first row has no interval before it.
-    const bool mean = config.vector_sampling == VectorSampling::kIntervalMean && !r.imu.empty();
-    const Vec3 accel_true = mean ? Vec3(0.5 * (accel_previous + accel_point)) : accel_point;
-    const Vec3 mag_true = mean ? Vec3(0.5 * (mag_previous + mag_point)) : mag_point;
+    const bool mean = config.vector_sampling == VectorSampling::kIntervalMean && k > 0;
+    accel_true[k] = mean ? Vec3(0.5 * (accel_previous + accel_point)) : accel_point;
+    mag_true[k] = mean ? Vec3(0.5 * (mag_previous + mag_point)) : mag_point;
     accel_previous = accel_point;
     mag_previous = mag_point;
-    ImuRow row;
-    row.t_s = s.t_s;
-    row.gyro_rad_s = gyro.measure(gyro_true);
-    row.accel_m_s2 = accel.measure(accel_true);
-    row.mag_uT = mag.measure(mag_true);
-    row.q_ns = q_ns;
-    row.moving = s.moving;
-    r.imu.push_back(row);
     r.field_ned_uT.push_back(field_ned);
     r.disturbance_ned_uT.push_back(disturbance);
-    q_ns_previous = q_ns;
+    q_ns_previous = q_ns[k];
+  }
+
+  // Where a time falls between rows (clamped to the run): the row before it and how far on.
+  const auto between = [&](double t_s) {
+    const double x = std::clamp(t_s * config.imu_rate_hz, 0.0, static_cast<double>(rows - 1));
+    const auto i = std::min(static_cast<std::size_t>(x), rows - 1);
+    return std::pair{i, i + 1 < rows ? x - static_cast<double>(i) : 0.0};
+  };
+  const auto accelAt = [&](double t_s) {
+    const auto [i, w] = between(t_s);
+    return w == 0.0 ? accel_true[i] : Vec3((1.0 - w) * accel_true[i] + w * accel_true[i + 1]);
+  };
+  // A slower magnetometer samples the field at an instant (its own sampling takes a few ms):
+  // the attitude and the field at t_s interpolated between rows.
+  const auto magPointAt = [&](double t_s) {
+    const auto [i, w] = between(t_s);
+    if (w == 0.0) return Vec3(q_ns[i].conjugate() * r.field_ned_uT[i]);
+    const Quat q = q_ns[i].slerp(w, q_ns[i + 1]).normalized();
+    return Vec3(q.conjugate() * ((1.0 - w) * r.field_ned_uT[i] + w * r.field_ned_uT[i + 1]));
+  };
+
+  r.imu.reserve(rows);
+  long long last_mag_sample = std::numeric_limits<long long>::min();
+  Vec3 mag_reading = Vec3::Zero();
+  double mag_truth_t = 0.0;
+  for (std::size_t k = 0; k < rows; ++k) {
+    const TruthState& s = states[k];
+    ImuRow row;
+    row.t_s = s.t_s;
+    row.gyro_bias_rad_s = gyro.offset() + gyro.driftingBias();  // what measure() adds in this row
+    row.gyro_rad_s = gyro.measure(gyro_true[k]);
+    row.accel_m_s2 = accel.measure(timing.accel_lag_s > 0.0 ? accelAt(s.t_s - timing.accel_lag_s) : accel_true[k]);
+    if (timing.isDefault()) {
+      row.mag_uT = mag.measure(mag_true[k]);
+      row.mag_truth_t_s = s.t_s;
+    } else {
+      // The magnetometer's last sample at or before t_k (sample j at first + j / rate, its
+      // own clock), describing the field as it was lag before it; repeated until the next.
+      const double period = slow_mag ? 1.0 / timing.mag_rate_hz : dt;
+      const double first = slow_mag ? timing.mag_first_sample_s : 0.0;
+      const auto j = static_cast<long long>(std::floor((s.t_s - first) / period + 1e-9));
+      if (j != last_mag_sample) {
+        last_mag_sample = j;
+        mag_truth_t = first + static_cast<double>(j) * period - timing.mag_lag_s;
+        mag_reading = mag.measure(magPointAt(mag_truth_t));
+      }
+      row.mag_uT = mag_reading;
+      row.mag_truth_t_s = mag_truth_t;
+    }
+    row.q_ns = q_ns[k];
+    row.moving = s.moving;
+    r.imu.push_back(row);
   }
 
   const LocalFrame frame(config.origin);

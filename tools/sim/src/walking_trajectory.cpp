@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/sim/carry.hpp"
 #include "headingd/sim/gait.hpp"
 
 namespace headingd::sim {
@@ -57,13 +58,20 @@ struct PhaseState {
   bool changing_posture = false;
 };
 
+// A phase held still has no postural sway (its attitude is constant).
+GaitParams phaseGait(const Phase& p) {
+  GaitParams g = gaitParams(p.activity);
+  if (p.held_still) g.sway_deg = 0.0;
+  return g;
+}
+
 PhaseState phaseState(const Scenario& s, double t) {
   const PhaseTime pt = phaseAt(s, t);
   const Activity current = s.phases[pt.index].activity;
-  GaitParams target = gaitParams(current);
+  GaitParams target = phaseGait(s.phases[pt.index]);
   if (pt.index == 0 || pt.since_start_s >= target.transition_s) return {target, false};
   const Activity previous = s.phases[pt.index - 1].activity;
-  return {blend(gaitParams(previous), target, smootherstep(pt.since_start_s / target.transition_s)),
+  return {blend(phaseGait(s.phases[pt.index - 1]), target, smootherstep(pt.since_start_s / target.transition_s)),
           previous != current};
 }
 
@@ -81,6 +89,7 @@ Trajectory generateWalkingTrajectory(const Scenario& scenario, double rate_hz, R
   const std::size_t n = rows + 2;
   std::vector<Vec3> position(n);
   std::vector<Quat> attitude(n);
+  std::vector<Quat> q_b_sensor(n, Quat::Identity());
   std::vector<double> path_heading(n);
   std::vector<PhaseState> phase_state(n);
   Vec3 path = Vec3::Zero();  // integrated horizontal path, NED
@@ -120,6 +129,12 @@ Trajectory generateWalkingTrajectory(const Scenario& scenario, double rate_hz, R
     attitude[i] = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
                    Eigen::AngleAxisd(roll, Vec3::UnitX()))
                       .normalized();
+    if (scenario.carry) {
+      // A carried phone: the sensor's place and attitude follow the limb it rides on.
+      const CarryPose pose = carryPose(*scenario.carry, g, 0.5 * step_phase);
+      position[i] += attitude[i] * pose.offset_body_m;
+      q_b_sensor[i] = pose.q_b_sensor;
+    }
     path_heading[i] = heading;
     phase_state[i] = ps;
   }
@@ -129,9 +144,11 @@ Trajectory generateWalkingTrajectory(const Scenario& scenario, double rate_hz, R
   for (Vec3& p : position) p -= origin;
 
   Trajectory out = kinematicTrajectory(scenario, rate_hz, attitude, position);
+  out.q_b_sensor_before_start = q_b_sensor[0];
   for (std::size_t k = 0; k < out.states.size(); ++k) {
     const std::size_t i = k + 1;
     TruthState& s = out.states[k];
+    s.q_b_sensor = q_b_sensor[i];
     s.path_heading_rad = path_heading[i];
     const double turn_rate = std::abs(core::wrapAngle(path_heading[i + 1] - path_heading[i - 1])) / (2.0 * dt);
     s.moving = phase_state[i].gait.speed_mps > 0.05 || turn_rate > 1.0 * kDeg || phase_state[i].changing_posture;

@@ -16,6 +16,7 @@ struct TriadErrorParams {
   core::Vec3 noise_density = core::Vec3::Zero();  // white noise, unit/√Hz: σ = density·√rate
   core::Vec3 noise_sigma = core::Vec3::Zero();    // white noise per sample, unit (added in quadrature)
   core::Vec3 offset_half_width = core::Vec3::Zero();  // o ~ U(-h, h) per axis
+  core::Vec3 offset_drawn = core::Vec3::Zero();       // plus this, drawn elsewhere (the phone grade's)
   core::Vec3 bias_walk_density = core::Vec3::Zero();  // random walk, unit/√s
   core::Vec3 markov_sigma = core::Vec3::Zero();       // Gauss-Markov stationary σ, unit
   core::Vec3 markov_time_s = core::Vec3::Ones();      // its correlation time
@@ -28,8 +29,10 @@ struct TriadErrorParams {
 // the noise and bias instability of a 2014 smartphone (MAGYQ's tables; its gyro is ~15 times
 // noisier than a current part). mems: consumer, with the white noise of current consumer
 // 9-axis parts' datasheets and their gyros' bias instability. uncalibrated: consumer, but the magnetometer distorted as in Kok & Schön's
-// Monte Carlo study (soft and hard iron of a raw sensor), for the calibration tools.
-enum class ImuGrade { kIdeal, kConsumer, kUncalibrated, kMems };
+// Monte Carlo study (soft and hard iron of a raw sensor), for the calibration tools. phone: a
+// phone's sensors drawn per seed from ranges (phone_imu.hpp): noisy gyro with a constant bias
+// up to 6 deg/s, and a magnetometer slower than the IMU and late against the gyro.
+enum class ImuGrade { kIdeal, kConsumer, kUncalibrated, kMems, kPhone };
 const char* imuGradeName(ImuGrade g);
 // Throws std::invalid_argument for an unknown name.
 ImuGrade parseImuGrade(std::string_view name);
@@ -40,7 +43,34 @@ struct ImuErrorParams {
   TriadErrorParams mag;    // µT
 };
 // Magnetometer errors scale with the field strength (Kok & Schön normalise the field to 1).
+// The fixed grades only: throws std::invalid_argument for kPhone, whose errors are drawn
+// (imuModel).
 ImuErrorParams imuErrorParams(ImuGrade grade, double field_strength_uT);
+
+// When the accelerometer and magnetometer sample against the gyro's rows. A lagging triad's
+// row describes the motion as it was `lag` earlier; a slower magnetometer takes a new sample
+// at first + j / rate (its own clock) and its last sample is repeated in every row until the
+// next, as phones' sensor APIs deliver it.
+struct SensorTiming {
+  double mag_rate_hz = 0.0;            // 0: a new magnetometer sample with every row
+  double mag_first_sample_s = 0.0;     // time of magnetometer sample 0, within [0, 1/rate)
+  double mag_lag_s = 0.0;
+  double accel_lag_s = 0.0;
+  bool isDefault() const { return mag_rate_hz == 0.0 && mag_lag_s == 0.0 && accel_lag_s == 0.0; }
+};
+
+struct ImuModel {
+  ImuErrorParams errors;
+  SensorTiming timing;
+};
+// The consumer grade's triads (the phone grade starts from them).
+TriadErrorParams consumerGyroErrors();
+TriadErrorParams consumerAccelErrors();
+TriadErrorParams consumerMagErrors(double field_strength_uT);
+
+// The grade's errors and timing. The phone grade draws them from `rng`; the others are fixed
+// (and draw nothing).
+ImuModel imuModel(ImuGrade grade, double field_strength_uT, Rng rng);
 
 // One triad: draws D and o at construction, then advances its bias once per measure().
 class TriadSensor {

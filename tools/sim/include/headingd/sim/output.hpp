@@ -23,7 +23,8 @@ void writeSensorErrors(std::ostream& out, const SimResult& r);
 inline constexpr const char* kTruthHeader =
     "t,heading_true_deg,heading_mag_deg,declination_deg,lat_deg,lon_deg,mount_yaw_deg,activity,indoor,moving,"
     "pitch_deg,roll_deg,heading_redefined_true_deg,head_height,path_heading_deg,speed_mps,north_m,east_m,down_m,"
-    "field_n_uT,field_e_uT,field_d_uT,disturbance_uT,body_qw,body_qx,body_qy,body_qz";
+    "field_n_uT,field_e_uT,field_d_uT,disturbance_uT,body_qw,body_qx,body_qy,body_qz,gyro_bias_x,gyro_bias_y,"
+    "gyro_bias_z";
 inline constexpr const char* kImuHeader =
     "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y,mag_z,ref_w,ref_x,ref_y,ref_z,moving";
 

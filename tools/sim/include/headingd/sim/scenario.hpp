@@ -39,6 +39,9 @@ struct Phase {
   std::vector<Turn> turns;
   bool indoor = false;  // no GPS fix
   FieldDisturbanceSpec field;
+  // Standing without postural sway: the true rate is exactly zero (the short still start of a
+  // phone recording, the phone held or set down before the walk begins).
+  bool held_still = false;
 };
 
 // Receiver conditions outdoors (indoors there is never a fix).
@@ -90,6 +93,26 @@ struct ScriptedOrientation {
   double moving_rate_deg_s = 2.0;
 };
 
+// A phone carried by the walking person (phone_scenarios.hpp): it rides on a limb (forearm,
+// arm, thigh) that turns about the body's y axis through a pivot (elbow, shoulder, hip) as the
+// gait goes on. The limb frame is the body frame turned by the limb angle about body y
+// (positive: the limb's lower end swings forward); the limb angle is
+//     w · (mean + amplitude · sin(stride phase + phase_rad)),
+// with the walking figures at walking speed, the running ones at running speed (blended in
+// between), and w rising from 0 at standing to 1 at walking speed, so a standing person holds
+// the phone still in its rest pose (limb angle 0).
+struct CarrySpec {
+  std::string mode;                                   // "texting", "calling", ... (descriptions, tests)
+  core::Quat q_limb_sensor = core::Quat::Identity();  // sensor to limb: how the phone sits in hand or pocket
+  core::Vec3 pivot_body_m = core::Vec3::Zero();       // the pivot from the body's reference point, body axes
+  core::Vec3 sensor_limb_m = core::Vec3::Zero();      // the phone from the pivot, limb axes
+  double walk_mean_deg = 0.0;
+  double walk_amplitude_deg = 0.0;
+  double run_mean_deg = 0.0;
+  double run_amplitude_deg = 0.0;
+  double phase_rad = 0.0;  // offset in the stride cycle (e.g. pi between the left and the right limb)
+};
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -99,6 +122,9 @@ struct Scenario {
   // Set for calibration scenarios: the attitude comes from the keyframes instead of the
   // person's gait (phases then only give the duration, field and GPS conditions).
   std::optional<ScriptedOrientation> scripted;
+  // Set for phone scenarios: the sensor is a phone carried by the walking person, not a unit
+  // fixed to the torso.
+  std::optional<CarrySpec> carry;
 
   double durationS() const;
 };

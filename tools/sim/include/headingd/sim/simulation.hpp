@@ -61,6 +61,12 @@ struct ImuRow {
   core::Vec3 mag_uT = core::Vec3::Zero();
   core::Quat q_ns = core::Quat::Identity();   // true sensor-to-NED attitude (BROAD's ref, but NED)
   bool moving = false;
+  // The gyro's true bias in this row: constant offset + drifting bias (sensor axes, rad/s),
+  // what an estimator's bias estimate should converge to (the scale error D - I comes on top).
+  core::Vec3 gyro_bias_rad_s = core::Vec3::Zero();
+  // The time whose true field and attitude the magnetometer reading of this row describes:
+  // t_s, or for a late and slower magnetometer (SensorTiming) its last sample's time - lag.
+  double mag_truth_t_s = 0.0;
 };
 
 // The estimator's input for a row: time in nanoseconds, the three triads.
@@ -85,6 +91,7 @@ struct SimResult {
   std::vector<ImuRow> imu;
   std::vector<GpsEpoch> gps;
   DrawnTriad gyro, accel, mag;
+  SensorTiming timing;  // when the accelerometer and magnetometer sample (phone grade)
 };
 
 inline constexpr double kGravity_m_s2 = 9.81;  // g_n = (0, 0, +9.81) in NED

@@ -19,6 +19,10 @@ namespace headingd::sim {
 struct TruthState {
   double t_s = 0.0;
   core::Quat q_nb = core::Quat::Identity();  // body to NED
+  // A carried phone's attitude in the body (phone scenarios, carry.hpp); identity for a sensor
+  // fixed to the torso. The sensor's attitude is q_nb ⊗ q_b_sensor (then the mount).
+  core::Quat q_b_sensor = core::Quat::Identity();
+  // Of the sensor: the torso point, or the carried phone.
   core::Vec3 position_ned_m = core::Vec3::Zero();
   core::Vec3 velocity_ned_mps = core::Vec3::Zero();
   core::Vec3 accel_ned_mps2 = core::Vec3::Zero();  // kinematic, gravity not included
@@ -36,6 +40,7 @@ struct Trajectory {
   std::vector<TruthState> states;
   // The body attitude one sample before t = 0: the first gyro row covers (-1/rate, 0].
   core::Quat q_nb_before_start = core::Quat::Identity();
+  core::Quat q_b_sensor_before_start = core::Quat::Identity();
 };
 
 // The kinematic part of every row of a trajectory sampled at dt with one padding sample on
