@@ -138,6 +138,9 @@ void writeSensorErrors(std::ostream& out, const SimResult& r) {
          c.origin.longitude_deg, c.year, c.month, c.day);
   append(s, "imu_rate_hz = %.9g\ngps_rate_hz = %.9g\nmount_yaw_deg = %.9g\ndecl_anomaly_deg = %.9g\n",
          c.imu_rate_hz, c.gps_rate_hz, c.mount_yaw_deg, c.decl_anomaly_deg);
+  if (c.mount_pitch_deg != 0.0 || c.mount_roll_deg != 0.0) {  // files of runs without them stay as they were
+    append(s, "mount_pitch_deg = %.9g\nmount_roll_deg = %.9g\n", c.mount_pitch_deg, c.mount_roll_deg);
+  }
   append(s, "duration_s = %.9g\nstart_utc = \"%04d-%02d-%02dT12:00:00Z\"  # the UTC of t = 0\n",
          r.scenario.durationS(), c.year, c.month, c.day);
   append(s, "\n[field]\nwmm_model = \"%s\"\nwmm_declination_deg = %.9g\ndeclination_deg = %.9g\n",
