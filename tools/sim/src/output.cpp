@@ -86,7 +86,8 @@ void writeTruthCsv(std::ostream& out, const SimResult& r) {
            wrap360(heading_true - r.declination_deg), r.declination_deg, g.latitude_deg, g.longitude_deg,
            r.config.mount_yaw_deg, activityName(s.activity), s.indoor ? 1 : 0, s.moving ? 1 : 0);
     append(line, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,", e.pitch_rad * kRadToDeg, e.roll_rad * kRadToDeg,
-           deg360(core::redefinedHeadingOf(s.q_nb)), core::headHeight(s.q_nb), deg360(s.path_heading_rad),
+           deg360(core::headingOfAxis(s.q_nb, core::kDocumentedHeadAxis)),
+           core::headHeight(s.q_nb, core::kDocumentedHeadAxis), deg360(s.path_heading_rad),
            std::hypot(s.velocity_ned_mps.x(), s.velocity_ned_mps.y()));
     append(line, "%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f\n", s.position_ned_m.x(),
            s.position_ned_m.y(), s.position_ned_m.z(), f.x(), f.y(), f.z(), r.disturbance_ned_uT[k].norm(), q.w(),
