@@ -48,6 +48,8 @@ Estimator::Estimator(const EstimatorParams& params)
       mag_prefilter_(p_.mag_prefilter_time_constant_s),
       motion_(p_),
       heading_corrections_(p_.backup_reset_period_s),
+      body_up_({kDocumentedHeadAxis, p_.body_up_time_constant_s, p_.body_up_min_walking_s,
+                p_.body_up_relearn_after_s, p_.redefine_heading_leave, p_.redefine_heading_enter}),
       heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave),
       mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
                         p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
@@ -247,9 +249,15 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.t_ns = t_ns;
   out_.q_nb = q;
   out_.yaw_rad = yawZyx(q);
-  out_.head_height = headHeight(q);
-  out_.heading_redefined = heading_definition_.update(q);
-  out_.heading_rad = out_.heading_redefined ? redefinedHeadingOf(q) : out_.yaw_rad;
+  // "Lying down" is the person's, not the sensor's: h and ψ_rd (§3.3) of the up axis learned
+  // while walking (a walking person is upright), whatever the mounting. Only integrated
+  // samples (dt > 0) teach it.
+  body_up_.update(q, motion_.level() != MotionLevel::kStanding, out_.dt_s);
+  out_.body_up_axis_s = body_up_.axis();
+  out_.body_up_learned = body_up_.learned();
+  out_.head_height = headHeight(q, body_up_.axis());
+  out_.heading_redefined = heading_definition_.update(out_.head_height);
+  out_.heading_rad = out_.heading_redefined ? headingOfAxis(q, body_up_.axis()) : out_.yaw_rad;
   out_.motion_level = motion_.level();
   out_.accel_disturbance = disturbance_.value();
   out_.gyro_bias_rad_s = bias_.bias();

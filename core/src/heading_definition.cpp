@@ -6,22 +6,19 @@ namespace headingd::core {
 
 double headingOf(const Quat& q_nb) { return yawZyx(q_nb); }
 
-double redefinedHeadingOf(const Quat& q_nb) {
-  const double h = std::sqrt(0.5);
-  const Quat q_y(h, 0.0, h, 0.0);  // eq. 3.10
-  return headingOf(q_nb * q_y);    // eq. 3.11
+double headingOfAxis(const Quat& q_nb, const Vec3& head_axis_s) {
+  const Vec3 head_n = q_nb * head_axis_s;        // eq. 3.11's q ⊗ q_y applied to x
+  return std::atan2(head_n.y(), head_n.x());     // definition 3.3.1
 }
 
-double headHeight(const Quat& q_nb) {
-  const double q0 = q_nb.w(), q1 = q_nb.x(), q2 = q_nb.y(), q3 = q_nb.z();
-  return q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
+double headHeight(const Quat& q_nb, const Vec3& head_axis_s) {
+  return -(q_nb * head_axis_s).z();  // eq. 3.12: NED up is -z_n
 }
 
-bool HeadingDefinitionSelector::update(const Quat& q_nb) {
-  const double height = headHeight(q_nb);
-  if (!redefined_ && height < enter_below_) {
+bool HeadingDefinitionSelector::update(double head_height) {
+  if (!redefined_ && head_height < enter_below_) {
     redefined_ = true;
-  } else if (redefined_ && height > leave_above_) {
+  } else if (redefined_ && head_height > leave_above_) {
     redefined_ = false;
   }
   return redefined_;

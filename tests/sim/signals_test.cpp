@@ -180,6 +180,23 @@ TEST(Mount, SensorIsTheBodyTurnedAboutBodyZ) {
   }
 }
 
+TEST(Mount, PitchAndRollTurnTheSensorFurtherAsZyxEulerAngles) {
+  sim::SimConfig c = config("thesis-declination", 3, sim::ImuGrade::kIdeal, 20.0);
+  c.mount_yaw_deg = 30.0;
+  c.mount_pitch_deg = 90.0;  // x up: a phone upright in a pocket
+  c.mount_roll_deg = 180.0;
+  const sim::SimResult& mounted = run(c);
+  // Roll 180° turns y to -y, pitch 90° keeps it and takes x onto -z, yaw 30° turns -y about z.
+  EXPECT_LT((mounted.q_bs * Vec3::UnitX() - Vec3(0.0, 0.0, -1.0)).norm(), 1e-12);
+  EXPECT_LT((mounted.q_bs * Vec3::UnitY() - Vec3(0.5, -std::sqrt(0.75), 0.0)).norm(), 1e-12);
+  // Standing upright at the start, the sensor's x axis points up.
+  EXPECT_GT(-(mounted.imu[0].q_ns * Vec3::UnitX()).z(), 0.99);
+  // Without pitch and roll, the mount is the yaw turn alone, bit for bit.
+  c.mount_pitch_deg = 0.0;
+  c.mount_roll_deg = 0.0;
+  EXPECT_EQ(run(c).q_bs.coeffs(), core::headingRotation(30.0 * kDeg).coeffs());
+}
+
 TEST(ImuErrors, ConsumerGradeAddsNoiseOfTheConfiguredSize) {
   // Differences to the ideal run (same seed, so the same motion) at rest: white noise of the
   // drawn sigma around a constant offset.

@@ -158,6 +158,12 @@ TEST(Config, BadValuesAreRefusedByName) {
   c.day = 30;
   EXPECT_THROW(sim::validate(c), std::invalid_argument);
   c = {};
+  c.mount_pitch_deg = 91.0;
+  EXPECT_THROW(sim::validate(c), std::invalid_argument);
+  c = {};
+  c.mount_roll_deg = std::nan("");
+  EXPECT_THROW(sim::validate(c), std::invalid_argument);
+  c = {};
   EXPECT_NO_THROW(sim::validate(c));
 }
 

@@ -98,6 +98,12 @@ int main(int argc, char** argv) {
   app.add_option("--mount-yaw-deg", c.mount_yaw_deg,
                  "IMU mounting: sensor axes = body axes turned by this about body z (down)")
       ->capture_default_str();
+  app.add_option("--mount-pitch-deg", c.mount_pitch_deg,
+                 "... then by this about the turned y axis (90: the sensor's x points up while the person stands)")
+      ->capture_default_str();
+  app.add_option("--mount-roll-deg", c.mount_roll_deg,
+                 "... then by this about the turned x axis (180: the sensor's z points up, a phone screen-up)")
+      ->capture_default_str();
   app.add_option("--rate-hz", c.imu_rate_hz, "IMU sample rate, 10..1000 Hz")->capture_default_str();
   app.add_option("--gps-rate-hz", c.gps_rate_hz, "GPS epochs per second: 1, 2, 4, 5 or 10")->capture_default_str();
   app.add_option("--imu-grade", grade,

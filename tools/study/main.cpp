@@ -73,7 +73,9 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
 void writeTrace(const std::string& path, const study::Recording& r, const core::EstimatorParams& params) {
   std::ostringstream out;  // written whole at the end, through a temporary file renamed into place
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
-         "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,mag_innovation_deg,mag_gain,rate_sigma_deg_s\n";
+         "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,"
+         "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
+         "yaw_err_deg\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
   std::vector<double> rate_sigmas;
@@ -84,20 +86,26 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     restores.push_back(e.counters().mag_heading_restores);
   });
   const auto errors = study::perSampleErrors(r, est);
-  char line[512];
+  char line[640];
   for (std::size_t i = 0; i < r.size(); ++i) {
     const auto& o = outputs[i];
     const auto e = core::eulerZyx(o.q_nb);
     const auto t = core::eulerZyx(r.truth_nb[i]);
-    std::snprintf(line, sizeof line, "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f\n",
+    // The published heading (x-axis yaw, or lying down the head's) and the x-axis yaw against
+    // the reference's x-axis yaw, plain (no alignment fitted).
+    const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDeg; };
+    std::snprintf(line, sizeof line,
+                  "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
+                  "%d,%.4f,%.3f,%.3f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
                   o.gyro_bias_rad_s.z(), o.mag_disturbed ? 1 : 0, static_cast<unsigned long long>(still_blocks[i]),
                   r.moving[i] ? 1 : 0, e.roll_rad * kDeg, e.pitch_rad * kDeg, t.roll_rad * kDeg, t.pitch_rad * kDeg,
                   o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2,
-                  o.heading_sigma_rad * kDeg, o.mag_innovation_rad * kDeg, o.mag_gain,
-                  rate_sigmas[i] * kDeg);
+                  o.heading_sigma_rad * kDeg, o.mag_innovation_rad * kDeg, o.mag_gain, rate_sigmas[i] * kDeg,
+                  o.heading_redefined ? 1 : 0, o.head_height, wrapped_deg(o.heading_rad - t.yaw_rad),
+                  wrapped_deg(o.yaw_rad - t.yaw_rad));
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());

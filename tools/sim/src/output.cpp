@@ -86,7 +86,8 @@ void writeTruthCsv(std::ostream& out, const SimResult& r) {
            wrap360(heading_true - r.declination_deg), r.declination_deg, g.latitude_deg, g.longitude_deg,
            r.config.mount_yaw_deg, activityName(s.activity), s.indoor ? 1 : 0, s.moving ? 1 : 0);
     append(line, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,", e.pitch_rad * kRadToDeg, e.roll_rad * kRadToDeg,
-           deg360(core::redefinedHeadingOf(s.q_nb)), core::headHeight(s.q_nb), deg360(s.path_heading_rad),
+           deg360(core::headingOfAxis(s.q_nb, core::kDocumentedHeadAxis)),
+           core::headHeight(s.q_nb, core::kDocumentedHeadAxis), deg360(s.path_heading_rad),
            std::hypot(s.velocity_ned_mps.x(), s.velocity_ned_mps.y()));
     append(line, "%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f,", s.position_ned_m.x(),
            s.position_ned_m.y(), s.position_ned_m.z(), f.x(), f.y(), f.z(), r.disturbance_ned_uT[k].norm(), q.w(),
@@ -140,6 +141,9 @@ void writeSensorErrors(std::ostream& out, const SimResult& r) {
          c.origin.longitude_deg, c.year, c.month, c.day);
   append(s, "imu_rate_hz = %.9g\ngps_rate_hz = %.9g\nmount_yaw_deg = %.9g\ndecl_anomaly_deg = %.9g\n",
          c.imu_rate_hz, c.gps_rate_hz, c.mount_yaw_deg, c.decl_anomaly_deg);
+  if (c.mount_pitch_deg != 0.0 || c.mount_roll_deg != 0.0) {  // files of runs without them stay as they were
+    append(s, "mount_pitch_deg = %.9g\nmount_roll_deg = %.9g\n", c.mount_pitch_deg, c.mount_roll_deg);
+  }
   append(s, "duration_s = %.9g\nstart_utc = \"%04d-%02d-%02dT12:00:00Z\"  # the UTC of t = 0\n",
          r.scenario.durationS(), c.year, c.month, c.day);
   append(s, "\n[field]\nwmm_model = \"%s\"\nwmm_declination_deg = %.9g\ndeclination_deg = %.9g\n",

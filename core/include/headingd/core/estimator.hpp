@@ -6,13 +6,15 @@
 //   hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's turn, in motion)
 //   → magnetometer heading observer (eq. 4.2, with an integral term for the vertical rate
 //   error) with the gyro-only heading restored at a
-//   disturbance's onset (eq. 4.4, heading_corrections.hpp) → heading definition (§3.3).
+//   disturbance's onset (eq. 4.4, heading_corrections.hpp) → the person's up axis learned
+//   while walking (body_up_axis.hpp) → heading definition (§3.3) for that axis.
 #include <cstdint>
 
 #include "headingd/core/accel_disturbance.hpp"
 #include "headingd/core/gravity_residual.hpp"
 #include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/attitude_ekf.hpp"
+#include "headingd/core/body_up_axis.hpp"
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/gyro_bias_estimator.hpp"
 #include "headingd/core/heading_corrections.hpp"
@@ -32,10 +34,15 @@ struct EstimatorOutput {
   // zyx yaw: heading of the body x-axis from magnetic north. Roll and pitch are not computed
   // per sample (two more libm calls that most samples' readers never look at): eulerZyx(q_nb).
   double yaw_rad = 0.0;
-  // Heading by the definition in use: ψ (x-axis) or, lying down, ψ_rd (-z axis, §3.3).
+  // Heading by the definition in use: ψ (x-axis) or, lying down, ψ_rd (§3.3: the heading of
+  // the person's head, body_up_axis_s).
   double heading_rad = 0.0;
   bool heading_redefined = false;
-  double head_height = 1.0;  // h(q), eq. 3.12
+  double head_height = 1.0;  // h(q) of eq. 3.12 for body_up_axis_s: 1 upright, 0 lying
+  // The person's up axis in sensor axes (unit): sensor -z, the documented mounting, until it
+  // has been learned while walking (body_up_learned; body_up_axis.hpp).
+  Vec3 body_up_axis_s = kDocumentedHeadAxis;
+  bool body_up_learned = false;
   MotionLevel motion_level = MotionLevel::kStanding;  // activity (§3.1's levels), reported only
   double accel_disturbance = 0.0;  // d_k, (m/s²)²
   double gravity_noise_m_s2 = 0.0;  // σ of R_k in this sample's gravity update (gravity_residual.hpp)
@@ -127,6 +134,7 @@ class Estimator {
   double mag_sample_dt_s_ = 0.0;  // time since the last field sample (a slower magnetometer)
   MotionLevelSelector motion_;
   HeadingCorrectionLog heading_corrections_;
+  BodyUpAxis body_up_;
   HeadingDefinitionSelector heading_definition_;
   MagDisturbanceDetector mag_disturbance_;
   HeadingUncertainty heading_uncertainty_;

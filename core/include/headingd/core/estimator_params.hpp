@@ -82,6 +82,24 @@ struct EstimatorParams {
   // h(q) below enter: use ψ_rd; above leave: back to ψ.
   double redefine_heading_enter = 0.6;
   double redefine_heading_leave = 0.7;
+  // h and ψ_rd are those of the person's up axis in sensor axes, learned while they walk or
+  // run (motion level above standing: a walking person is upright), not of the sensor's -z
+  // (body_up_axis.hpp): a phone held screen-up or a sensor mounted flat is not a person lying
+  // down. The axis follows the walking up direction with this time constant (0: the fixed -z
+  // axis of the thesis). Long against a stride and the few seconds of getting up or down, so
+  // that neither moves it by more than a few degrees; short enough to follow a sensor that
+  // slips slowly in its mount or pocket.
+  double body_up_time_constant_s = 30.0;
+  // ... and replaces the default -z once this much walking has been seen: about ten strides,
+  // whose mean up direction the body's sway (a few degrees) no longer moves by more than a
+  // degree or two, far inside the 46° between upright and leaving "lying down" (h = 0.7).
+  double body_up_min_walking_s = 5.0;
+  // Once learned, only walking upright by the axis (h above redefine_heading_leave) refines
+  // it, so that crawling (moving, not upright) does not tilt it; walking "lying down" by it
+  // (h below redefine_heading_enter) for this long means the sensor was moved (a phone put
+  // in a pocket) and the axis is learned afresh. Longer than a crawl lasts, short against how
+  // long a phone stays where it was put.
+  double body_up_relearn_after_s = 60.0;
 
   // --- Magnetometer heading observer (Henriksson eq. 4.2) ---
   // K = 1 - exp(-dt/τ): the magnetometer pulls the heading with this time constant. Chosen on

@@ -41,6 +41,11 @@ struct SimConfig {
   int day = 1;
   double decl_anomaly_deg = 0.0;  // local declination = WMM's + this
   double mount_yaw_deg = 0.0;     // sensor axes = body axes turned by this about body z
+  // ... then by this about the turned y axis, then by roll about the turned x axis (zyx, as
+  // Euler angles): a sensor mounted flat (pitch 90: its x up), upside down (roll 180: its z
+  // up, as a phone lying screen-up whose z leaves the screen), in a pocket.
+  double mount_pitch_deg = 0.0;
+  double mount_roll_deg = 0.0;
   double imu_rate_hz = 100.0;
   double gps_rate_hz = 1.0;
   ImuGrade imu_grade = ImuGrade::kConsumer;
