@@ -1,5 +1,6 @@
 #include "headingd/core/gyro_bias_estimator.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,10 @@ namespace {
 
 // The in-motion measurement is made from the turns of this much time.
 constexpr double kMotionWindowS = 0.1;
+
+// χ²(3) at 99 %: a still block's bias further from the estimate than this (in their joint
+// covariance) counts as a less certain block.
+constexpr double kBlockNisLimit = 11.34;
 
 // Innovations are clipped to the largest plausible bias: one wild sample (a knock, the
 // first moments of a motion) moves the estimate at most that far.
@@ -47,9 +52,34 @@ const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_
   const double tau_walk = p_.bias_time_constant_s * p_.bias_walk_rad_s_per_sqrt_s;
   Mat3 W = block.covariance;
   W.diagonal() = W.diagonal().cwiseMax(tau_walk * tau_walk / block.duration_s);
-  const Mat3 S = P_ + W;
+  const Vec3 innovation = clipped(Vec3(block.bias_rad_s - bias_), p_.bias_max_rad_s);
+  Mat3 S = P_ + W;
+  // A block that disagrees with the estimate far beyond both their covariances (normalised
+  // innovation squared above the 99 % point of χ²(3)) either had a turn its vectors did not
+  // measure right (a hand's slow drift with its lever arm's accelerations) or shows that the
+  // bias has changed (a temperature step). One such block counts with the spread it shows
+  // (S scaled to make its NIS 3) instead of moving the estimate by all of it; the next block
+  // decides: if it agrees with the outlier, the bias changed, and the estimate's covariance
+  // opens up to the outliers' difference from it, so that the change is learned at once.
+  const double nis = innovation.dot(S.ldlt().solve(innovation));
+  if (nis > kBlockNisLimit) {
+    const Vec3 between = block.bias_rad_s - previous_outlier_.bias_rad_s;
+    const bool confirmed = has_previous_outlier_ &&
+                           between.dot((W + previous_outlier_.covariance).ldlt().solve(between)) <= kBlockNisLimit;
+    if (confirmed) {
+      P_ += innovation * innovation.transpose();
+      S = P_ + W;
+      has_previous_outlier_ = false;
+    } else {
+      previous_outlier_ = {block.bias_rad_s, block.duration_s, W};
+      has_previous_outlier_ = true;
+      S *= nis / 3.0;
+    }
+  } else {
+    has_previous_outlier_ = false;
+  }
   const Mat3 K = P_ * S.inverse();
-  bias_ += K * clipped(Vec3(block.bias_rad_s - bias_), p_.bias_max_rad_s);
+  bias_ += K * innovation;
   P_ -= K * P_;
   P_ = 0.5 * (P_ + P_.transpose());
   clampBias();

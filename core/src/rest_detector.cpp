@@ -150,10 +150,21 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
     }
   }
   gyro_floor_.update(gyro_rms, dt_s);
+  // Until the gyro's noise floor is known (its warm-up), a noisy gyro's rest cannot be told
+  // from a motion by its own RMS: a fixed bound would reject a consumer gyro's rest (0.01-0.03
+  // rad/s per sample) and a short opening rest would be over before the floor is. So the gyro
+  // test is provisional then: the stretch goes on (the accelerometer's absolute test and the
+  // mean rate still apply) with its largest RMS kept, and once the floor is known that RMS is
+  // held against the bound; no block ends before.
+  const bool floor_known = std::isfinite(gyro_floor_.value());
   const double gyro_bound =
       gyro_floor_.threshold(2.5, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s);
-  const bool steady = gyro_rms < gyro_bound && accel_rms < p_.rest_accel_threshold_m_s2 &&
+  if (!floor_known) provisional_gyro_rms_ = std::max(provisional_gyro_rms_, gyro_rms);
+  const bool gyro_steady = floor_known ? gyro_rms < gyro_bound && provisional_gyro_rms_ < gyro_bound
+                                       : gyro_rms < p_.rest_gyro_max_threshold_rad_s;
+  const bool steady = gyro_steady && accel_rms < p_.rest_accel_threshold_m_s2 &&
                       gyro_.mean.norm() <= p_.bias_max_rad_s + p_.rest_max_turn_rate_rad_s;
+  if (floor_known) provisional_gyro_rms_ = 0.0;  // held against the bound once, above
   if (!steady) {
     steady_s_ = 0.0;
     // After a motion the low-passed means still hold it for a few time constants.
@@ -169,7 +180,7 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
   // The low-passed rate: its integral over the block is the turn the low-passed directions
   // below see (the filter is linear), so the two compare over the same stretch of time.
   block_rotation_ += gyro_.mean * dt_s;
-  if (block_time_s_ < p_.rest_min_duration_s) return false;
+  if (block_time_s_ < p_.rest_min_duration_s || !floor_known) return false;
 
   Vec3 turn;
   Mat3 turn_covariance;

@@ -4,7 +4,11 @@
 // a wrong estimate in.
 //
 //  - At rest (rest_detector.hpp) the mean rate ω̄ is the bias (Earth's 15°/h is far below
-//    the noise of body-worn MEMS gyros): measurement y = ω̄, H = I.
+//    the noise of body-worn MEMS gyros): measurement y = ω̄, H = I. A block far outside the
+//    joint covariance (NIS above χ²(3)'s 99 % point) counts with the spread it shows, not
+//    with its own covariance: a hand's slow drift can fool a block's turn measurement. A
+//    second such block that agrees with the first says the bias changed: then it is learned
+//    at once.
 //  - In motion the accelerometer says what the gyro got wrong about tilt: a bias error
 //    β = b - b̂ turns the predicted attitude by R β per second (R: sensor to NED), and the
 //    EKF's gravity update turns it back. Over the time the gravity filters average (their lag
@@ -106,6 +110,9 @@ class GyroBiasEstimator {
   Eigen::Vector2d window_turn_rad_ = Eigen::Vector2d::Zero();
   double rest_seconds_ = 0.0;
   std::uint64_t still_blocks_ = 0;
+  // The last still block, when it was an outlier (its covariance: the W it was weighed with).
+  RestBlock previous_outlier_;
+  bool has_previous_outlier_ = false;
 };
 
 }  // namespace headingd::core

@@ -9,7 +9,11 @@
 //    rest_gyro_threshold_rad_s or 2.5 times the gyro's own learned noise floor, whichever is
 //    larger, up to rest_gyro_max_threshold_rad_s; the accelerometer's is absolute, since it
 //    is what tells a person standing from one moving). A variance test, so that one noisy
-//    sample does not end a rest;
+//    sample does not end a rest. Until the floor is known (its first 4 filter time constants)
+//    the gyro's test is provisional: the stretch's largest RMS is kept and held against the
+//    bound once the floor is known, and no block ends before. A fixed bound there missed the
+//    1-5 s opening rests of noisy phone and consumer gyros (0.01-0.04 rad/s per sample):
+//    their bias was then never learned (issue 28);
 //  - the mean rate is no more than a plausible bias plus a slow turn;
 // and the world's vectors say how far it turned: from the block's start to its end the
 // low-passed directions of gravity (accelerometer) and, when the field is usable and
@@ -94,6 +98,7 @@ class RestDetector {
   NoiseFloor mag_floor_;
   bool at_rest_ = false;
   double steady_s_ = 0.0;  // how long the steady tests have held
+  double provisional_gyro_rms_ = 0.0;  // largest gyro RMS of the stretch before the floor was known
   // Time constants of steadiness before a block may start: one at start-up (the running means
   // have then seen a time constant's samples), three after a motion (they still hold it).
   double settle_time_constants_ = 1.0;
