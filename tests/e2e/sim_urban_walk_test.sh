@@ -27,12 +27,21 @@ cat >"$work/models_only.toml" <<'TOML'
 decl_min_speed_mps = 50.0
 TOML
 
-# score <dir>: "rmse_all rmse_outdoor rmse_indoor final_declination_error" (degrees)
+# score <dir>: "rmse_all rmse_outdoor rmse_indoor final_declination_error" (degrees). Columns
+# are found by their header names (est.csv then truth.csv, pasted side by side).
 score() {
-  paste -d, <(tail -n +2 "$1/est.csv") <(tail -n +2 "$1/truth.csv") | awk -F, '
+  paste -d, "$1/est.csv" "$1/truth.csv" | awk -F, '
     function wrap(a) { while (a > 180) a -= 360; while (a <= -180) a += 360; return a }
-    $14 != "nan" { e = wrap($14 - $17); s += e * e; n++; if ($24 == 1) { si += e * e; ni++ } else { so += e * e; no++ } }
-    { last_decl_err = $10 - $19 }
+    NR == 1 {
+      for (i = 1; i <= NF; i++) if (!($i in col)) col[$i] = i  # the first of a repeated name: est.csv
+      est = col["heading_true_deg"]; est_decl = col["declination_deg"]
+      for (i = 1; i <= NF; i++) if ($i == "heading_true_deg" && i != est) truth = i
+      for (i = 1; i <= NF; i++) if ($i == "declination_deg" && i != est_decl) truth_decl = i
+      indoor = col["indoor"]
+      next
+    }
+    $est != "nan" { e = wrap($est - $truth); s += e * e; n++; if ($indoor == 1) { si += e * e; ni++ } else { so += e * e; no++ } }
+    { last_decl_err = $est_decl - $truth_decl }
     END { printf "%.3f %.3f %.3f %.3f\n", sqrt(s / n), sqrt(so / no), sqrt(si / ni), last_decl_err }'
 }
 

@@ -5,6 +5,9 @@
 //   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--set ...]
 //   ... --trace FILE  (one run: per-sample diagnostics as CSV)
 //   ... --anchors DIR (VQF and Fusion beside headingd: the drivers built by ../shared/anchors/build.sh)
+// The h<2s% column: the share of scored samples whose heading error is within twice the
+// estimator's stated heading 1-sigma (plain errors on simulations, after the fitted alignment
+// on recordings): docs/heading-sigma.md.
 #include <algorithm>
 #include <array>
 #include <atomic>

@@ -105,6 +105,7 @@ class Estimator {
   const EstimatorParams& params() const { return p_; }
   const AttitudeEkf& ekf() const { return ekf_; }
   const HeadingUncertainty& headingUncertainty() const { return heading_uncertainty_; }
+  const GyroBiasEstimator& gyroBias() const { return bias_; }
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
   // strength and dip tests of the disturbance detection (Henriksson §4.2).
