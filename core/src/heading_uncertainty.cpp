@@ -18,6 +18,17 @@ constexpr double kInnovationMeanS = 1.0;
 
 }  // namespace
 
+HeadingUncertainty::HeadingUncertainty(const HeadingUncertaintyParams& params)
+    : p_(params), field_decay_{params.field_correlation_s}, innovation_mean_decay_{kInnovationMeanS} {}
+
+double HeadingUncertainty::Decay::operator()(double dt) {
+  if (dt != dt_s) {
+    dt_s = dt;
+    value = std::exp(-dt / time_constant_s);
+  }
+  return value;
+}
+
 void HeadingUncertainty::forget() {
   known_ = false;
   // e is undefined until the field sets it: no correlation with b or u is kept.
@@ -31,11 +42,11 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance) {
   // b's row and column keeps the correlations and P positive semi-definite.
   const double walk = p_.rate_walk_rad_s_per_sqrt_s * p_.rate_walk_rad_s_per_sqrt_s * dt_s;
   const double b_variance = rate_started_ ? std::min(P_(kB, kB) + walk, rate_variance) : rate_variance;
-  if (P_(kB, kB) > 0.0) {
+  if (P_(kB, kB) > 0.0 && b_variance != P_(kB, kB)) {
     const double scale = std::sqrt(b_variance / P_(kB, kB));
     P_.row(kB) *= scale;
     P_.col(kB) *= scale;
-  } else {
+  } else if (P_(kB, kB) <= 0.0) {
     P_(kB, kB) = b_variance;
   }
   rate_started_ = true;
@@ -48,7 +59,7 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance) {
     P_(kU, kE) = P_(kE, kU);
   }
   // u ← φ u + w, φ = exp(-dt/T), var w = (1 - φ²) σ_u².
-  const double phi = std::exp(-dt_s / p_.field_correlation_s);
+  const double phi = field_decay_(dt_s);
   const double steady = p_.field_sigma_rad * p_.field_sigma_rad + innovation_variance_;
   if (!field_started_) {
     P_(kU, kU) = steady;  // the first sample: u in its steady state
@@ -67,9 +78,9 @@ void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
     innovation_started_ = true;
     return;
   }
-  innovation_mean_rad_ += (1.0 - std::exp(-dt_s / kInnovationMeanS)) * (innovation_rad - innovation_mean_rad_);
+  innovation_mean_rad_ += (1.0 - innovation_mean_decay_(dt_s)) * (innovation_rad - innovation_mean_rad_);
   const double squared = innovation_mean_rad_ * innovation_mean_rad_;
-  innovation_variance_ += (1.0 - std::exp(-dt_s / p_.field_correlation_s)) * (squared - innovation_variance_);
+  innovation_variance_ += (1.0 - field_decay_(dt_s)) * (squared - innovation_variance_);
 }
 
 void HeadingUncertainty::correct(double gain, double rate_gain) {

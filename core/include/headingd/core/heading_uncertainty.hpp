@@ -30,7 +30,7 @@ struct HeadingUncertaintyParams {
 
 class HeadingUncertainty {
  public:
-  explicit HeadingUncertainty(const HeadingUncertaintyParams& params) : p_(params) {}
+  explicit HeadingUncertainty(const HeadingUncertaintyParams& params);
 
   // The heading is unknown again (start, a gap in the samples): the next field sample sets it.
   void forget();
@@ -54,7 +54,18 @@ class HeadingUncertainty {
   double rateSigmaRadS() const;
 
  private:
+  // exp(-dt/τ) for one time constant, kept for the last sample period (the same from one
+  // sample to the next on most sensors: no std::exp per sample).
+  struct Decay {
+    double time_constant_s;
+    double dt_s = -1.0;
+    double value = 1.0;
+    double operator()(double dt);
+  };
+
   HeadingUncertaintyParams p_;
+  Decay field_decay_;            // u's, and the innovations' spread's average
+  Decay innovation_mean_decay_;  // the innovations' one-second mean
   Eigen::Matrix3d P_ = Eigen::Matrix3d::Zero();  // over (e, b, u)
   bool known_ = false;
   bool rate_started_ = false;   // P_(1, 1) has been set from the bias filter
