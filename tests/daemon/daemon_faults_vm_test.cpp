@@ -172,18 +172,27 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
   EXPECT_LE(estimated, ring.pushed);
   EXPECT_GE(estimated, ring.pushed - kRingCapacity);
 
-  // The estimator's rate: during the flood each period published HEADING or was counted as a
-  // missed deadline, and the flood cost no more ticks than the emulated CPU misses anyway.
+  // The estimator's rate, by the daemon's own account (STATUS): between the STATUS before the
+  // flood and the one after it each period ran a tick or was counted as a missed deadline.
+  const double status_span_s = static_cast<double>(during.utime - before.utime) * 1e-6;
+  const auto ticks = static_cast<double>(during.ticks - before.ticks);
+  const auto misses = static_cast<double>(during.deadline_misses - before.deadline_misses);
+  // What reached this process over UDP in the flood's window on the wall clock (HEADING's utime
+  // is its publish time). This process shares the two emulated CPUs with the flood and the
+  // daemon, so its socket may overflow: that loss is the receiver's, and the bound is looser.
   std::size_t heading_in_flood = 0;
   for (const auto& h : lcm_->heading()) {
     const auto utime = static_cast<double>(h.message.utime);
     heading_in_flood += utime >= flood_start_us && utime < flood_end_us;
   }
   const double flood_s = (flood_end_us - flood_start_us) * 1e-6;
-  const auto misses = static_cast<double>(during.deadline_misses - before.deadline_misses);
-  std::fprintf(stderr, "flood %.2f s: %zu HEADING, %.0f missed deadlines (rate %.0f Hz), HEADING rate on STATUS %.1f Hz before, %.1f Hz in the flood\n",
-               flood_s, heading_in_flood, misses, after.rate_hz, before.heading_rate_hz, during.heading_rate_hz);
-  EXPECT_GE(static_cast<double>(heading_in_flood) + misses, flood_s * after.rate_hz * 0.9);
+  std::fprintf(stderr,
+               "STATUS span %.2f s: %.0f ticks, %.0f missed deadlines (rate %.0f Hz); flood %.2f s: %zu HEADING received; "
+               "HEADING rate on STATUS %.1f Hz before, %.1f Hz in the flood\n",
+               status_span_s, ticks, misses, after.rate_hz, flood_s, heading_in_flood, before.heading_rate_hz,
+               during.heading_rate_hz);
+  EXPECT_GE(ticks + misses, status_span_s * after.rate_hz * 0.9);
+  EXPECT_GE(static_cast<double>(heading_in_flood), flood_s * after.rate_hz * 0.75);
   EXPECT_GE(during.heading_rate_hz, 0.75 * std::min(before.heading_rate_hz, after.rate_hz));
   EXPECT_EQ(paced_again.state, "ok") << paced_again.reason;
   expectRunningThenStop();
