@@ -55,7 +55,8 @@ Estimator::Estimator(const EstimatorParams& params)
                         p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
                         p_.mag_max_reference_dip_deviation_rad}),
       heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
-                            p_.bias_walk_rad_s_per_sqrt_s}) {}
+                            p_.bias_walk_rad_s_per_sqrt_s}),
+      mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
   out_.dt_s = 0.0;
@@ -82,6 +83,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       accel_prefilter_.restart();
       gravity_residual_.restart(p_.accel_residual_time_constant_s, p_.accel_disturbance_time_constant_s);
       mag_prefilter_.restart();
+      mag_delay_.restartChain();  // the delay learned so far stays: it is the sensor's
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
       heading_corrections_.restart(vertical_rate_correction_rad_s_);
       ekf_.setCovariance(kStartupCovariance);
@@ -132,10 +134,26 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   }
   // The accelerometer and magnetometer samples are means over the interval, so they see the
   // body as it was part of the way through it, while the gyro's increment has brought the
-  // attitude to its end: turn them by the rest of the interval's rotation.
+  // attitude to its end: turn them by the rest of the interval's rotation. A field sample
+  // repeated by a magnetometer slower than the IMU is as much older again as it has been held,
+  // and the magnetometer's own delay, once learned, replaces the fraction where it makes the
+  // field's dip steadier (mag_delay_estimator.hpp).
   const Vec3 turn_back = -p_.vector_sample_lag_fraction * dt_s * gyro;
   const Vec3 accel_now = turnedBySmallAngle(s.accel_m_s2, turn_back);
-  const Vec3 mag_now = turnedBySmallAngle(s.mag_uT, turn_back);
+  mag_delay_.update(gyro, mag_usable ? &s.mag_uT : nullptr, field_for_rest != nullptr, dt_s);
+  double mag_lag_s = p_.vector_sample_lag_fraction * dt_s + mag_delay_.heldS();
+  Vec3 mag_now = turnedBySmallAngle(s.mag_uT, -mag_lag_s * gyro);
+  if (mag_delay_.candidateS() != 0.0) {
+    const double delayed_lag_s = mag_delay_.candidateS() + mag_delay_.heldS();
+    const Vec3 mag_delayed = turnedBySmallAngle(s.mag_uT, -delayed_lag_s * gyro);
+    mag_delay_.scoreDip(ekf_.attitude().conjugate() * Vec3::UnitZ(), mag_now, mag_delayed, field_for_rest != nullptr,
+                        dt_s);
+    if (mag_delay_.useCandidate()) {
+      mag_now = mag_delayed;
+      mag_lag_s = delayed_lag_s;
+    }
+  }
+  out_.mag_lag_s = mag_lag_s;
   const Vec3 gravity_measurement = accel_prefilter_.update(increment, accel_now, dt_s);
 
   // Henriksson §3.1 also goes back to a gyro-only background attitude whenever the level

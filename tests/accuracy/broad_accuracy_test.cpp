@@ -43,8 +43,11 @@ const std::map<std::string, Limits> kLimits = {
     {"21_undisturbed_fast_combined", {3.87, 1.58}},     // 3.36 / 1.37
     {"24_disturbed_tapping_A", {1.36, 0.69}},           // 1.18 / 0.60
     {"26_disturbed_phone_vibration_A", {1.95, 0.63}},   // 1.69 / 0.54
-    {"28_disturbed_stationary_magnet_A", {2.14, 1.28}}, // 1.86 / 1.11
-    {"30_disturbed_stationary_magnet_C", {1.75, 1.14}}, // 1.52 / 0.99
+    // 28 and 30 re-measured 2026-12-05 with the learned magnetometer delay (8.5 ms on these
+    // trials instead of half of 3.5 ms): plain total 1.83 -> 2.18 and 1.52 -> 1.76 deg, fitted
+    // 1.46 -> 1.25 and 1.38 -> 1.21 deg; the 14 trials' mean 1.85 -> 1.82 (fitted 1.36 -> 1.27).
+    {"28_disturbed_stationary_magnet_A", {2.51, 1.28}}, // 2.18 / 1.11
+    {"30_disturbed_stationary_magnet_C", {2.02, 1.14}}, // 1.76 / 1.00
     {"32_disturbed_attached_magnet_1cm", {1.95, 0.88}}, // 1.69 / 0.76
     {"34_disturbed_attached_magnet_3cm", {4.95, 0.89}}, // 4.30 / 0.77
 };

@@ -2,6 +2,7 @@
 // The whole attitude and magnetic-heading estimator: pure and deterministic (same samples
 // in, same estimates out), no I/O, no clocks. Per sample:
 //   gate (timestamps, NaN) → gyro bias (still blocks) → EKF predict (Henriksson eq. 3.2-3.3)
+//   → the field turned by the magnetometer's learned delay (mag_delay_estimator.hpp)
 //   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → d_k and R level (eq. 3.1, 3.4,
 //   hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's turn, in motion)
 //   → magnetometer heading observer (eq. 4.2, with an integral term for the vertical rate
@@ -21,6 +22,7 @@
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/core/heading_uncertainty.hpp"
 #include "headingd/core/imu_sample.hpp"
+#include "headingd/core/mag_delay_estimator.hpp"
 #include "headingd/core/mag_disturbance.hpp"
 #include "headingd/core/sample_gate.hpp"
 
@@ -56,6 +58,10 @@ struct EstimatorOutput {
   MagDisturbance mag_disturbance;  // which tests fired
   double mag_gain = 0.0;             // K of eq. 4.2 this sample
   double mag_innovation_rad = 0.0;   // ψ_mm - ψ_pred
+  // How much older than the gyro's end of interval the field sample was taken to be (s): the
+  // sample-interval fraction, or the magnetometer's learned delay, plus how long it was held
+  // (mag_delay_estimator.hpp).
+  double mag_lag_s = 0.0;
   // 1-sigma of yaw_rad's error (heading_uncertainty.hpp); π/√3 while the heading is unknown.
   double heading_sigma_rad = 0.0;
 };
@@ -105,6 +111,7 @@ class Estimator {
   const EstimatorParams& params() const { return p_; }
   const AttitudeEkf& ekf() const { return ekf_; }
   const HeadingUncertainty& headingUncertainty() const { return heading_uncertainty_; }
+  const MagDelayEstimator& magDelay() const { return mag_delay_; }
   const GyroBiasEstimator& gyroBias() const { return bias_; }
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
@@ -139,6 +146,7 @@ class Estimator {
   HeadingDefinitionSelector heading_definition_;
   MagDisturbanceDetector mag_disturbance_;
   HeadingUncertainty heading_uncertainty_;
+  MagDelayEstimator mag_delay_;  // the magnetometer's delay against the gyro
   double mag_seconds_ = 0.0;  // time since the first usable field sample
   double vertical_rate_correction_rad_s_ = 0.0;  // the observer's integral term
   double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)
