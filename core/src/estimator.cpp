@@ -16,14 +16,6 @@ const Mat4 kStartupCovariance = 0.05 * 0.05 * Mat4::Identity();
 // since it started afresh: before, they correct the start.
 constexpr double kBiasSettleTimeConstants = 5.0;
 
-// A world-fixed vector v (sensor axes) as a sensor turned further by the small rotation
-// vector -φ sees it: v + φ × v + ½ φ × (φ × v), the rotation to second order (the third-order
-// term is below |φ|³/6: 3e-5 of |v| for 600 deg/s over half a 100 Hz sample).
-Vec3 turnedBySmallAngle(const Vec3& v, const Vec3& phi) {
-  const Vec3 once = phi.cross(v);
-  return v + once + 0.5 * phi.cross(once);
-}
-
 }  // namespace
 
 Quat attitudeFromGravityAndField(const Vec3& accel_m_s2, const Vec3* mag_uT) {

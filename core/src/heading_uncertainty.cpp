@@ -19,15 +19,7 @@ constexpr double kInnovationMeanS = 1.0;
 }  // namespace
 
 HeadingUncertainty::HeadingUncertainty(const HeadingUncertaintyParams& params)
-    : p_(params), field_decay_{params.field_correlation_s}, innovation_mean_decay_{kInnovationMeanS} {}
-
-double HeadingUncertainty::Decay::operator()(double dt) {
-  if (dt != dt_s) {
-    dt_s = dt;
-    value = std::exp(-dt / time_constant_s);
-  }
-  return value;
-}
+    : p_(params), field_decay_(params.field_correlation_s), innovation_mean_decay_(kInnovationMeanS) {}
 
 void HeadingUncertainty::forget() {
   known_ = false;

@@ -18,26 +18,21 @@ void MagDelayEstimator::update(const Vec3& gyro_rad_s, const Vec3* mag_uT, bool 
     has_previous_ = false;
     return;
   }
-  // The field as the gyro says it turned over this interval (ṁ = -ω × m, to second order),
-  // and the regressor ∫ ω̇ × m dt: what a late field differs by is Δ times it.
+  // The regressor ∫ ω̇ × m dt (what a late field differs by is Δ times it), and the field as
+  // the gyro says it turned over this interval (ṁ = -ω × m, to second order).
   if (has_previous_) regressor_ += (gyro_rad_s - previous_gyro_).cross(predicted_);
   previous_gyro_ = gyro_rad_s;
-  const Vec3 phi = gyro_rad_s * dt_s;
-  const Vec3 once = phi.cross(predicted_);
-  predicted_ += -once + 0.5 * phi.cross(once);
+  predicted_ = turnedBySmallAngle(predicted_, -gyro_rad_s * dt_s);
   if (!fresh) return;
 
   if (has_previous_) {
     const Vec3 residual = *mag_uT - predicted_;  // ρ
-    if (dt_s != decay_dt_s_) {
-      decay_dt_s_ = dt_s;
-      decay_ = std::exp(-dt_s / p_.time_constant_s);
-    }
-    sum_xy_ = decay_ * sum_xy_ + residual.dot(regressor_);
-    sum_xx_ = decay_ * sum_xx_ + regressor_.squaredNorm();
-    sum_yy_ = decay_ * sum_yy_ + residual.squaredNorm();
-    count_ = decay_ * count_ + 1.0;
-    if (sum_xx_ > 0.0 && count_ > 3.0) {
+    const double decay = decay_(dt_s);
+    sum_xy_ = decay * sum_xy_ + residual.dot(regressor_);
+    sum_xx_ = decay * sum_xx_ + regressor_.squaredNorm();
+    sum_yy_ = decay * sum_yy_ + residual.squaredNorm();
+    count_ = decay * count_ + 1.0;
+    if (sum_xx_ > 0.0 && count_ > 3.0) {  // a spread from a handful of samples at least
       estimate_s_ = sum_xy_ / sum_xx_;
       // Residual variance per sample (3 components, one parameter), over the information.
       const double residual_ss = std::max(sum_yy_ - estimate_s_ * sum_xy_, 0.0);
@@ -57,15 +52,12 @@ void MagDelayEstimator::scoreDip(const Vec3& down_s, const Vec3& mag_default, co
   const double norm_default = mag_default.norm(), norm_delayed = mag_delayed.norm();
   if (!(norm_default > 0.0) || !(norm_delayed > 0.0)) return;
   const double sin_dip[2] = {down_s.dot(mag_default) / norm_default, down_s.dot(mag_delayed) / norm_delayed};
-  if (dt_s != decay_dt_s_) {
-    decay_dt_s_ = dt_s;
-    decay_ = std::exp(-dt_s / p_.time_constant_s);
-  }
-  dip_weight_ = decay_ * dip_weight_ + 1.0;
+  const double decay = decay_(dt_s);
+  dip_weight_ = decay * dip_weight_ + 1.0;
   double spread[2];
   for (int i = 0; i < 2; ++i) {
-    dip_sum_[i] = decay_ * dip_sum_[i] + sin_dip[i];
-    dip_sum_sq_[i] = decay_ * dip_sum_sq_[i] + sin_dip[i] * sin_dip[i];
+    dip_sum_[i] = decay * dip_sum_[i] + sin_dip[i];
+    dip_sum_sq_[i] = decay * dip_sum_sq_[i] + sin_dip[i] * sin_dip[i];
     const double mean = dip_sum_[i] / dip_weight_;
     spread[i] = dip_sum_sq_[i] / dip_weight_ - mean * mean;
   }

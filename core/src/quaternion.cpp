@@ -113,4 +113,9 @@ Quat nedToEnu(const Quat& q_nb) {
   return Quat(0.0, h, h, 0.0) * q_nb;
 }
 
+Vec3 turnedBySmallAngle(const Vec3& v, const Vec3& phi) {
+  const Vec3 once = phi.cross(v);
+  return v + once + 0.5 * phi.cross(once);
+}
+
 }  // namespace headingd::core

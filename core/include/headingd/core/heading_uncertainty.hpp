@@ -19,6 +19,8 @@
 // sample the heading is unknown: σ is that of an angle uniform on the circle (π/√3).
 #include <Eigen/Core>
 
+#include "headingd/core/low_pass.hpp"
+
 namespace headingd::core {
 
 // The estimator's values and how they were chosen: estimator_params.hpp (heading_field_*).
@@ -54,18 +56,9 @@ class HeadingUncertainty {
   double rateSigmaRadS() const;
 
  private:
-  // exp(-dt/τ) for one time constant, kept for the last sample period (the same from one
-  // sample to the next on most sensors: no std::exp per sample).
-  struct Decay {
-    double time_constant_s;
-    double dt_s = -1.0;
-    double value = 1.0;
-    double operator()(double dt);
-  };
-
   HeadingUncertaintyParams p_;
-  Decay field_decay_;            // u's, and the innovations' spread's average
-  Decay innovation_mean_decay_;  // the innovations' one-second mean
+  ExpDecay field_decay_;            // u's, and the innovations' spread's average
+  ExpDecay innovation_mean_decay_;  // the innovations' one-second mean
   Eigen::Matrix3d P_ = Eigen::Matrix3d::Zero();  // over (e, b, u)
   bool known_ = false;
   bool rate_started_ = false;   // P_(1, 1) has been set from the bias filter

@@ -15,25 +15,35 @@ inline double lowPassAlpha(double sample_period_s, double time_constant_s) {
   return std::exp(-x);
 }
 
-// α of lowPassAlpha for one time constant, kept for the last sample period: the period
-// comes from timestamps and is the same from one sample to the next on most sensors, and
-// the estimator runs a dozen of these filters per sample.
-class LowPassAlpha {
+// exp(-T/τ): the exact decay of a continuous-time process over a period T (where
+// lowPassAlpha is eq. 2.17's).
+inline double expDecay(double sample_period_s, double time_constant_s) {
+  return std::exp(-sample_period_s / time_constant_s);
+}
+
+// A coefficient of one time constant, kept for the last sample period: the period comes
+// from timestamps and is the same from one sample to the next on most sensors, and the
+// estimator uses a dozen of these per sample (no std::exp each time).
+template <double (*Coefficient)(double sample_period_s, double time_constant_s)>
+class PerPeriod {
  public:
-  explicit LowPassAlpha(double time_constant_s) : time_constant_s_(time_constant_s) {}
+  explicit PerPeriod(double time_constant_s) : time_constant_s_(time_constant_s) {}
   double operator()(double sample_period_s) {
     if (sample_period_s != sample_period_s_) {
       sample_period_s_ = sample_period_s;
-      alpha_ = lowPassAlpha(sample_period_s, time_constant_s_);
+      value_ = Coefficient(sample_period_s, time_constant_s_);
     }
-    return alpha_;
+    return value_;
   }
 
  private:
   double time_constant_s_;
   double sample_period_s_ = -1.0;  // no period yet
-  double alpha_ = 0.0;
+  double value_ = 0.0;
 };
+
+using LowPassAlpha = PerPeriod<lowPassAlpha>;
+using ExpDecay = PerPeriod<expDecay>;
 
 // Henriksson eq. 2.13: y[k] = α y[k-1] + (1-α) x[k]. The first input initialises y.
 template <typename T>

@@ -20,6 +20,7 @@
 // steadier with it than without (scoreDip).
 #include <limits>
 
+#include "headingd/core/low_pass.hpp"
 #include "headingd/core/quaternion.hpp"
 
 namespace headingd::core {
@@ -32,7 +33,7 @@ struct MagDelayParams {
 
 class MagDelayEstimator {
  public:
-  explicit MagDelayEstimator(const MagDelayParams& p) : p_(p) {}
+  explicit MagDelayEstimator(const MagDelayParams& p) : p_(p), decay_(p.time_constant_s) {}
 
   // Per sample: the bias-corrected rate over the sample's interval of dt_s, and the field
   // sample (nullptr: none). Only a clean field is learned from: when there is none or it is
@@ -73,7 +74,7 @@ class MagDelayEstimator {
   // sums for their means and spreads.
   double dip_weight_ = 0.0;
   double dip_sum_[2] = {0.0, 0.0}, dip_sum_sq_[2] = {0.0, 0.0};
-  double decay_dt_s_ = -1.0, decay_ = 1.0;  // exp(-dt/τ) for the last sample period
+  ExpDecay decay_;  // of every sum above, per sample
 };
 
 }  // namespace headingd::core
