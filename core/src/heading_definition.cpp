@@ -15,8 +15,9 @@ double headHeight(const Quat& q_nb, const Vec3& head_axis_s) {
   return -(q_nb * head_axis_s).z();  // eq. 3.12: NED up is -z_n
 }
 
-bool HeadingDefinitionSelector::update(double head_height) {
-  if (!redefined_ && head_height < enter_below_) {
+bool HeadingDefinitionSelector::update(double head_height, double dt_s) {
+  below_s_ = head_height < enter_below_ ? below_s_ + dt_s : 0.0;
+  if (!redefined_ && head_height < enter_below_ && below_s_ >= enter_after_s_) {
     redefined_ = true;
   } else if (redefined_ && head_height > leave_above_) {
     redefined_ = false;

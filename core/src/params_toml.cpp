@@ -38,6 +38,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"disturbance_down_to_walking", &P::disturbance_down_to_walking, 0.0, 1e4, "(m/s^2)^2"},
       {"backup_reset_period_s", &P::backup_reset_period_s, 0.1, 600.0, "s"},
       {"redefine_heading_enter", &P::redefine_heading_enter, -1.0, 1.0, "h(q)"},
+      {"redefine_heading_after_s", &P::redefine_heading_after_s, 0.0, 1e5, "s"},
       {"redefine_heading_leave", &P::redefine_heading_leave, -1.0, 1.0, "h(q)"},
       {"body_up_time_constant_s", &P::body_up_time_constant_s, 0.0, 3600.0, "s"},
       {"body_up_min_walking_s", &P::body_up_min_walking_s, 0.0, 3600.0, "s"},

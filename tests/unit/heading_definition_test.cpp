@@ -95,16 +95,33 @@ TEST(HeadingDefinitionSelector, HysteresisBetweenEnterAndLeave) {
   HeadingDefinitionSelector s(0.6, 0.7);
   // The head height h of eq. 3.12, sample by sample:
   EXPECT_FALSE(s.redefined());
-  EXPECT_FALSE(s.update(0.9));
-  EXPECT_FALSE(s.update(0.65));  // between: stays with ψ
-  EXPECT_TRUE(s.update(0.55));   // below 0.6: ψ_rd
-  EXPECT_TRUE(s.update(0.65));   // between: stays with ψ_rd
-  EXPECT_TRUE(s.update(0.0));
-  EXPECT_TRUE(s.update(-0.9));
-  EXPECT_TRUE(s.update(0.69));
-  EXPECT_FALSE(s.update(0.75));  // above 0.7: ψ again
-  EXPECT_FALSE(s.update(0.61));
+  EXPECT_FALSE(s.update(0.9, 0.01));
+  EXPECT_FALSE(s.update(0.65, 0.01));  // between: stays with ψ
+  EXPECT_TRUE(s.update(0.55, 0.01));   // below 0.6: ψ_rd
+  EXPECT_TRUE(s.update(0.65, 0.01));   // between: stays with ψ_rd
+  EXPECT_TRUE(s.update(0.0, 0.01));
+  EXPECT_TRUE(s.update(-0.9, 0.01));
+  EXPECT_TRUE(s.update(0.69, 0.01));
+  EXPECT_FALSE(s.update(0.75, 0.01));  // above 0.7: ψ again
+  EXPECT_FALSE(s.update(0.61, 0.01));
   EXPECT_FALSE(s.redefined());
+}
+
+TEST(HeadingDefinitionSelector, EntersOnlyOnceTheHeadHasStayedLowLongEnough) {
+  HeadingDefinitionSelector s(0.6, 0.7, 2.0);
+  // A swung phone: h dips below 0.6 for 1.5 s at a time (150 samples of 10 ms), then rises.
+  for (int swing = 0; swing < 5; ++swing) {
+    for (int k = 0; k < 150; ++k) EXPECT_FALSE(s.update(0.3, 0.01));
+    EXPECT_FALSE(s.update(0.65, 0.01));  // between enter and leave: the time below starts over
+  }
+  // Lying down: below for 2 s, then redefined until h is back above 0.7.
+  for (int k = 0; k < 195; ++k) EXPECT_FALSE(s.update(0.1, 0.01));
+  for (int k = 0; k < 10; ++k) s.update(0.1, 0.01);  // 2 s reached within these (rounding)
+  EXPECT_TRUE(s.redefined());
+  EXPECT_TRUE(s.update(0.65, 0.01));
+  EXPECT_FALSE(s.update(0.75, 0.01));  // getting up leaves at once
+  // Samples without a time step (start, gap) do not count as time below.
+  for (int k = 0; k < 1000; ++k) EXPECT_FALSE(s.update(0.1, 0.0));
 }
 
 }  // namespace

@@ -26,18 +26,23 @@ double headingOfAxis(const Quat& q_nb, const Vec3& head_axis_s);
 // and the text fix the sign.)
 double headHeight(const Quat& q_nb, const Vec3& head_axis_s);
 
-// Chooses the definition with hysteresis (§6.2: enter below 0.6, leave above 0.7).
+// Chooses the definition with hysteresis (§6.2: enter below 0.6, leave above 0.7), entering
+// only once h has stayed below enter_below for enter_after_s: lying down is a pose that
+// lasts, and a swung or running phone dips below it for a second at a time (the heading of
+// the head axis, near vertical then, is no heading). Leaving is at once.
 class HeadingDefinitionSelector {
  public:
-  HeadingDefinitionSelector(double enter_below, double leave_above)
-      : enter_below_(enter_below), leave_above_(leave_above) {}
-  // head_height: h of eq. 3.12 this sample.
-  bool update(double head_height);
+  HeadingDefinitionSelector(double enter_below, double leave_above, double enter_after_s = 0.0)
+      : enter_below_(enter_below), leave_above_(leave_above), enter_after_s_(enter_after_s) {}
+  // head_height: h of eq. 3.12 this sample; dt_s: the time since the previous sample.
+  bool update(double head_height, double dt_s);
   bool redefined() const { return redefined_; }
 
  private:
   double enter_below_;
   double leave_above_;
+  double enter_after_s_;
+  double below_s_ = 0.0;  // how long h has been below enter_below
   bool redefined_ = false;
 };
 
