@@ -111,6 +111,7 @@ double GyroBiasEstimator::TurnSpread::windowVariance(double window_s) const {
 void GyroBiasEstimator::addTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s,
                                           bool measures_bias) {
   window_s_ += dt_s;
+  since_update_s_ += dt_s;
   if (measures_bias) {
     measuring_s_ += dt_s;
     window_turn_rad_ += turn_rad;
@@ -146,8 +147,19 @@ void GyroBiasEstimator::updateFromWindow() {
   const double nominal = tau_walk * tau_walk / window_s_;
   const Eigen::Matrix<double, 3, 2> PHt = P_ * H.transpose();
   Eigen::Matrix2d S = H * PHt;
-  S(0, 0) += std::max(nominal, W0);
-  S(1, 1) += std::max(nominal, W1);
+  // The turns answer a change of the estimate only through the tilt's lag τ_c, so the update
+  // is a loop: an integrator (the bias) behind a first-order lag, which rings or overshoots
+  // when the integrator's time constant is short against τ_c (s² τ_c + s + 1/τ_i = 0: damping
+  // ratio ½ √(τ_i / τ_c)). While P is large (the first windows, nothing yet known) the Kalman
+  // gain alone would move the estimate within a window or two. So each component's gain is
+  // at most t / (k τ_c), k = bias_motion_min_tilt_lags, for the time t since the previous
+  // update (the turns have followed the last change for that long; t = T while every window
+  // updates): W ≥ H P Hᵀ (k τ_c / t - 1).
+  const double loop_s = p_.bias_motion_min_tilt_lags * spread_[0].correlation_time_s;
+  const double lag_factor = loop_s > 0.0 ? std::max(0.0, loop_s / std::min(since_update_s_, loop_s) - 1.0) : 0.0;
+  since_update_s_ = 0.0;
+  S(0, 0) += std::max({nominal, W0, lag_factor * S(0, 0)});
+  S(1, 1) += std::max({nominal, W1, lag_factor * S(1, 1)});
   const Eigen::Matrix<double, 3, 2> K = PHt * S.inverse();
   const Eigen::Vector2d innovation = -window_turn_rad_ / window_s_;  // = H (b - b̂)
   bias_ += K * clipped(innovation, p_.bias_max_rad_s);

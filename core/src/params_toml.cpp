@@ -78,6 +78,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"bias_time_constant_s", &P::bias_time_constant_s, 1e-3, 3600.0, "s"},
       {"bias_motion_time_constant_s", &P::bias_motion_time_constant_s, 0.0, 1e5, "s"},
       {"bias_motion_max_attitude_change", &P::bias_motion_max_attitude_change, 0.0, 10.0, "1"},
+      {"bias_motion_min_tilt_lags", &P::bias_motion_min_tilt_lags, 0.0, 100.0, "tilt time constants"},
       {"bias_max_rad_s", &P::bias_max_rad_s, 0.0, 1.0, "rad/s"},
   };
   return specs;

@@ -3,6 +3,9 @@
 // heading-correction sums that give eq. 4.4's gyro-only heading.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/gyro_bias_estimator.hpp"
 #include "headingd/core/heading_corrections.hpp"
@@ -197,6 +200,53 @@ TEST(GyroBiasEstimator, TheTurnsOfASensorThatKeepsTurningAreNotTakenForBias) {
   GyroBiasEstimator steady(p);
   for (int i = 0; i < 6000; ++i) steady.addTiltCorrection(Eigen::Vector2d(-0.02 * kDt, 0.0), Quat::Identity(), kDt, true);
   EXPECT_GT(steady.bias().x(), 0.01);
+}
+
+// The gravity update's turns as the EKF makes them: a bias error β tilts the attitude, and the
+// update takes back e / τ_c of the tilt error e per second (a first-order lag of τ_c).
+struct LaggedTilt {
+  double tau_c_s;
+  double error_rad = 0.0;
+  double turn(double bias_error_rad_s) {
+    error_rad += bias_error_rad_s * kDt;
+    const double correction = error_rad * kDt / tau_c_s;
+    error_rad -= correction;
+    return -correction;
+  }
+};
+
+// Largest bias estimate about x over `seconds` of the lagged loop for a bias of beta about
+// body x, after 10 s in which the turns' spread is learned (tilt settled, no bias error).
+double runLaggedLoop(const EstimatorParams& p, double beta, double first_seconds, double* after_first) {
+  GyroBiasEstimator est(p);
+  for (int i = 0; i < 1000; ++i) est.addTiltCorrection(Eigen::Vector2d::Zero(), Quat::Identity(), kDt, true);
+  LaggedTilt tilt{tiltTimeConstantS(p)};
+  double largest = 0.0;
+  for (int i = 0; i < 6000; ++i) {
+    est.addTiltCorrection(Eigen::Vector2d(tilt.turn(beta - est.bias().x()), 0.0), Quat::Identity(), kDt, true);
+    largest = std::max(largest, est.bias().x());
+    if (i + 1 == static_cast<int>(first_seconds / kDt + 0.5)) *after_first = est.bias().x();
+  }
+  return largest;
+}
+
+TEST(GyroBiasEstimator, TheFirstTurnsDoNotSetTheBiasFasterThanTheTiltAnswers) {
+  // The turns answer a changed estimate only through the tilt's lag (3.3 s here): an update
+  // that follows them faster overshoots. With nothing known yet (P at half the clamp) the
+  // Kalman gain alone would follow within a second.
+  const double beta = 0.02;
+  const EstimatorParams p;
+  double after_2s = 0.0;
+  const double largest = runLaggedLoop(p, beta, 2.0, &after_2s);
+  EstimatorParams unbounded = p;
+  unbounded.bias_motion_min_tilt_lags = 0.0;
+  double unbounded_after_2s = 0.0;
+  const double unbounded_largest = runLaggedLoop(unbounded, beta, 2.0, &unbounded_after_2s);
+  std::printf("after 2 s %.4f (unbounded %.4f), largest over 60 s %.4f (unbounded %.4f) of %.4f rad/s\n", after_2s,
+              unbounded_after_2s, largest, unbounded_largest, beta);
+  EXPECT_LT(after_2s, 0.5 * unbounded_after_2s);
+  EXPECT_LT(largest, 1.08 * beta);  // damping ratio 1/√2: about 4 % over
+  EXPECT_GT(largest, 0.5 * beta);  // it still learns
 }
 
 TEST(GyroBiasEstimator, StaysWithinTheClamp) {

@@ -28,6 +28,10 @@
 //    turns' real lag, the turns' mean is not the bias, and on the phone recordings (no rest,
 //    the phone always turning) the update learned 20-100 mrad/s that were not there;
 //    estimator_params.hpp gives the figures.
+//    The turns answer a changed estimate only through the tilt's lag τ_c, so the update is a
+//    feedback loop; its gain is bounded so that it follows no faster than with time constant
+//    bias_motion_min_tilt_lags × τ_c (damping ratio 1/√2 at 2), also in the first windows,
+//    when the uncertainty of knowing nothing would let them set the bias at once.
 // The same structure carries VQF's motion bias estimation (Laidig & Seel 2023); MAGYQ
 // (Renaudin & Combettes 2014, §3) keeps the gyro bias as filter states for the same reason.
 //
@@ -107,6 +111,7 @@ class GyroBiasEstimator {
   std::array<TurnSpread, 2> spread_;                       // about north, about east
   double window_s_ = 0.0;
   double measuring_s_ = 0.0;  // of the window, the time whose turns measure the bias
+  double since_update_s_ = 0.0;  // since the last in-motion update (see updateFromWindow)
   Eigen::Vector2d window_turn_rad_ = Eigen::Vector2d::Zero();
   double rest_seconds_ = 0.0;
   std::uint64_t still_blocks_ = 0;
