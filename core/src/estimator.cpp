@@ -268,7 +268,7 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.head_height = headHeight(q, body_up_.axis());
   // Until the up axis has been learned the mounting is unknown, and no sensor axis can say
   // "lying down": a phone held screen-up has its -z pointing down (h = -1), and the heading
-  // of that near-vertical axis is no heading at all (109° RMS on the shared iPhone 5 texting
+  // of that near-vertical axis is no heading at all (107° RMS on the shared iPhone 4S texting
   // trial, which never walks hard enough to learn the axis). The x-axis yaw is published
   // instead. A fixed axis (body_up_time_constant_s = 0, the thesis) decides from the start.
   const bool axis_known = body_up_.learned() || !(p_.body_up_time_constant_s > 0.0);
