@@ -266,13 +266,13 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.body_up_axis_s = body_up_.axis();
   out_.body_up_learned = body_up_.learned();
   out_.head_height = headHeight(q, body_up_.axis());
-  // Until the up axis has been learned the mounting is unknown, and no sensor axis can say
-  // "lying down": a phone held screen-up has its -z pointing down (h = -1), and the heading
-  // of that near-vertical axis is no heading at all (107° RMS on the shared iPhone 4S texting
-  // trial, which never walks hard enough to learn the axis). The x-axis yaw is published
-  // instead. A fixed axis (body_up_time_constant_s = 0, the thesis) decides from the start.
-  const bool axis_known = body_up_.learned() || !(p_.body_up_time_constant_s > 0.0);
-  out_.heading_redefined = heading_definition_.update(axis_known ? out_.head_height : 1.0, out_.dt_s);
+  // Until the up axis is known the mounting is unknown, and no sensor axis can say "lying
+  // down": a phone held screen-up has its -z pointing down (h = -1), and the heading of that
+  // near-vertical axis is no heading at all (107° RMS on the shared iPhone 4S texting trial,
+  // which never walks hard enough to learn the axis). The selector sees the person upright
+  // (h = 1) meanwhile, and the x-axis yaw is published.
+  constexpr double kUpright = 1.0;
+  out_.heading_redefined = heading_definition_.update(body_up_.known() ? out_.head_height : kUpright, out_.dt_s);
   out_.heading_rad = out_.heading_redefined ? headingOfAxis(q, body_up_.axis()) : out_.yaw_rad;
   out_.motion_level = motion_.level();
   out_.accel_disturbance = disturbance_.value();

@@ -155,7 +155,7 @@ void GyroBiasEstimator::updateFromWindow() {
   // at most t / (k τ_c), k = bias_motion_min_tilt_lags, for the time t since the previous
   // update (the turns have followed the last change for that long; t = T while every window
   // updates): W ≥ H P Hᵀ (k τ_c / t - 1).
-  const double loop_s = p_.bias_motion_min_tilt_lags * spread_[0].correlation_time_s;
+  const double loop_s = p_.bias_motion_min_tilt_lags * tiltTimeConstantS(p_);
   const double lag_factor = loop_s > 0.0 ? std::max(0.0, loop_s / std::min(since_update_s_, loop_s) - 1.0) : 0.0;
   since_update_s_ = 0.0;
   S(0, 0) += std::max({nominal, W0, lag_factor * S(0, 0)});

@@ -41,6 +41,9 @@ class BodyUpAxis {
   // default before (and held while the person does not walk, and while it is learned afresh).
   const Vec3& axis() const { return axis_s_; }
   bool learned() const { return learned_; }  // axis() has been learned (not the default)
+  // axis() is the person's: learned, or fixed by configuration (time constant 0: the default
+  // axis is taken as the mounting). Before, the mounting is unknown.
+  bool known() const { return learned_ || !(p_.time_constant_s > 0.0); }
 
  private:
   void learn(const Vec3& up_s, double dt_s);
