@@ -48,7 +48,8 @@ Estimator::Estimator(const EstimatorParams& params)
                         p_.mag_max_reference_dip_deviation_rad}),
       heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
                             p_.bias_walk_rad_s_per_sqrt_s}),
-      mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}) {}
+      mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}),
+      vertical_rate_error_(p_) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
   out_.dt_s = 0.0;
@@ -77,7 +78,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       mag_prefilter_.restart();
       mag_delay_.restartChain();  // the delay learned so far stays: it is the sensor's
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
-      heading_corrections_.restart(vertical_rate_correction_rad_s_);
+      heading_corrections_.restart(vertical_rate_error_.rateRadS());
       ekf_.setCovariance(kStartupCovariance);
       heading_aligned_ = false;
       heading_uncertainty_.forget();
@@ -95,7 +96,7 @@ void Estimator::initialise(const ImuSample& s, bool mag_usable) {
   if (s.accel_m_s2.norm() < 0.1 * p_.gravity_m_s2) return;  // no usable gravity direction yet
   ekf_.setAttitude(attitudeFromGravityAndField(s.accel_m_s2, mag_usable ? &s.mag_uT : nullptr));
   ekf_.setCovariance(kStartupCovariance);
-  heading_corrections_.restart(vertical_rate_correction_rad_s_);
+  heading_corrections_.restart(vertical_rate_error_.rateRadS());
   heading_aligned_ = mag_usable;
   heading_uncertainty_.forget();
   predictHeadingUncertainty(0.0);
@@ -119,11 +120,13 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   ekf_.predict(increment, dt_s, std::sqrt(p_.gyro_noise_rad_s * p_.gyro_noise_rad_s + scale_noise * scale_noise));
   // The heading observer's integral term: the vertical rate error it has learned comes off
   // the heading rate always, also while the field is disturbed (it is the gyro's error).
-  // Zero while the term is off (the default): then nothing is turned.
-  if (vertical_rate_correction_rad_s_ != 0.0) {
-    ekf_.turnHeading(vertical_rate_correction_rad_s_ * dt_s);
-    heading_corrections_.addRateTurn(vertical_rate_correction_rad_s_, dt_s);
+  // Zero until it has learned (vertical_rate_error.hpp): then nothing is turned.
+  const double rate_correction = vertical_rate_error_.rateRadS();
+  if (rate_correction != 0.0) {
+    ekf_.turnHeading(rate_correction * dt_s);
+    heading_corrections_.addRateTurn(rate_correction, dt_s);
   }
+  vertical_rate_error_.advance(dt_s, ekf_.attitude());
   // The accelerometer and magnetometer samples are means over the interval, so they see the
   // body as it was part of the way through it, while the gyro's increment has brought the
   // attitude to its end: turn them by the rest of the interval's rotation. A field sample
@@ -181,7 +184,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
     ekf_ = previous_ekf;
     ++state_recoveries_;
   }
-  heading_corrections_.advance(dt_s, vertical_rate_correction_rad_s_);
+  heading_corrections_.advance(dt_s, vertical_rate_error_.rateRadS());
   publish(s.t_ns);
 }
 
@@ -194,7 +197,7 @@ void Estimator::restoreGyroHeading() {
   ekf_.turnHeading(undo);
   heading_corrections_.add(undo);
   // The integral term likewise goes back to what it was then.
-  vertical_rate_correction_rad_s_ = heading_corrections_.oldestRateRadS();
+  vertical_rate_error_.restore(heading_corrections_.oldestRateRadS());
   ++mag_heading_restores_;
 }
 
@@ -227,16 +230,11 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate
     mag_seconds_ += dt_s;
     gain = std::max(magObserverGain(dt_s, p_.mag_heading_time_constant_s), dt_s / mag_seconds_);
   }
-  // The integral term (PI observer): once the observer has left its running-mean start, a
-  // lasting innovation means the gyro's vertical rate is wrong. Ki = 1/(τ τ_i): with τ_i = 4τ
-  // the loop ψ̃'' + ψ̃'/τ + Ki ψ̃ = 0 is critically damped, a rate error δ gone in a few 2τ.
-  double rate_gain = 0.0;
-  if (heading_aligned_ && p_.mag_rate_error_time_constant_s > 0.0 && mag_seconds_ >= p_.mag_heading_time_constant_s &&
-      turn_rate_rad_s <= p_.mag_rate_error_max_turn_rad_s) {
-    rate_gain = dt_s / (p_.mag_heading_time_constant_s * p_.mag_rate_error_time_constant_s);
-    vertical_rate_correction_rad_s_ = std::clamp(vertical_rate_correction_rad_s_ + m.innovation_rad * rate_gain,
-                                                 -p_.bias_max_rad_s, p_.bias_max_rad_s);
-  }
+  // The integral term (PI observer, vertical_rate_error.hpp), once the observer has left its
+  // running-mean start.
+  const double rate_gain = heading_aligned_ && mag_seconds_ >= p_.mag_heading_time_constant_s
+                               ? vertical_rate_error_.learn(m.innovation_rad, dt_s, turn_rate_rad_s)
+                               : 0.0;
   if (heading_aligned_) heading_uncertainty_.observeInnovation(m.innovation_rad, dt_s);
   heading_uncertainty_.correct(gain, rate_gain);
   heading_aligned_ = true;
@@ -277,7 +275,7 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.motion_level = motion_.level();
   out_.accel_disturbance = disturbance_.value();
   out_.gyro_bias_rad_s = bias_.bias();
-  out_.vertical_rate_correction_rad_s = vertical_rate_correction_rad_s_;
+  out_.vertical_rate_correction_rad_s = vertical_rate_error_.rateRadS();
   out_.at_rest = bias_.atRest();
   out_.heading_sigma_rad = heading_uncertainty_.sigmaRad();
 }

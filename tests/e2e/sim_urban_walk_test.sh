@@ -9,8 +9,9 @@
 # (closer to the truth than the models, which are 3° off) and lowers the outdoor RMSE
 # (indoors the heading error is dominated by the buildings' fields, whose sign decides
 # whether a better declination helps or hurts there); the mean RMSE stays within 10 % of
-# what was measured on 2026-11-26, 7.80° (7.47° before the ψ_g restore was turned on and the
-# gait mounting yaw stopped using the filter's tilt).
+# what was measured on 2026-12-05, 6.21° (6.33° before the observer's integral term learned
+# outdoors; 7.80° on 2026-11-26, 7.47° before the ψ_g restore was turned on and the gait
+# mounting yaw stopped using the filter's tilt).
 set -euo pipefail
 sim=$1 replay=$2
 work=$(mktemp -d)
@@ -47,7 +48,7 @@ score() {
 
 failed=0
 declare -A total outdoors
-limit=8.6
+limit=6.8
 for seed in 1 2 3; do
   "$sim" --scenario urban-walk --seed "$seed" --decl-anomaly-deg 3 --out-dir "$work/s$seed" >/dev/null
   for cfg in default no_handling models_only; do

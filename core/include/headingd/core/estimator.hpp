@@ -25,6 +25,7 @@
 #include "headingd/core/mag_delay_estimator.hpp"
 #include "headingd/core/mag_disturbance.hpp"
 #include "headingd/core/sample_gate.hpp"
+#include "headingd/core/vertical_rate_error.hpp"
 
 namespace headingd::core {
 
@@ -118,6 +119,7 @@ class Estimator {
   // strength and dip tests of the disturbance detection (Henriksson §4.2).
   void setReferenceField(double field_norm_uT, double inclination_rad) {
     mag_disturbance_.setReference(field_norm_uT, inclination_rad);
+    vertical_rate_error_.referenceUpdated();
   }
 
  private:
@@ -148,7 +150,7 @@ class Estimator {
   HeadingUncertainty heading_uncertainty_;
   MagDelayEstimator mag_delay_;  // the magnetometer's delay against the gyro
   double mag_seconds_ = 0.0;  // time since the first usable field sample
-  double vertical_rate_correction_rad_s_ = 0.0;  // the observer's integral term
+  VerticalRateError vertical_rate_error_;  // the observer's integral term
   double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)
   bool initialised_ = false;
   bool heading_aligned_ = false;

@@ -1,0 +1,61 @@
+#pragma once
+// The heading observer's integral term (Henriksson eq. 4.2 made a PI observer): a lasting
+// innovation ψ_mm - ψ is a rate error of the gyro about the vertical (a bias no rest has
+// shown), and the heading rate is corrected by ∫ innovation dt / (τ τ_i), τ the observer's
+// time constant and τ_i mag_rate_error_time_constant_s.
+//
+// A field that is wrong but looks clean makes lasting innovations too, and the rate learned
+// from them outlasts the field. So the term learns only where the innovation is most likely
+// a rate error (estimator_params.hpp has the figures):
+//  - while the World Magnetic Model's field has been set from a GPS fix recently
+//    (mag_rate_error_max_reference_age_s): a receiver with a fix sees the sky, away from the
+//    steel of buildings, and the disturbance tests compare the field with the model's there;
+//  - once the heading has stayed within mag_rate_error_steady_heading_rad for
+//    mag_rate_error_settle_s: after a change of heading the innovations show how the field's
+//    error differs between the two headings (a calibration's residual hard iron), which the
+//    observer takes out with time constant τ; a rate error keeps them where they are;
+//  - while the sensor turns slower than mag_rate_error_max_turn_rad_s.
+#include <limits>
+
+#include "headingd/core/estimator_params.hpp"
+#include "headingd/core/quaternion.hpp"
+
+namespace headingd::core {
+
+class VerticalRateError {
+ public:
+  explicit VerticalRateError(const EstimatorParams& p);
+
+  // Per sample: time passes; q_nb is the attitude after the gyro's prediction (its x-axis
+  // heading is what has to stay steady).
+  void advance(double dt_s, const Quat& q_nb);
+  // The World Magnetic Model's field was set from a fix just now.
+  void referenceUpdated() { reference_age_s_ = 0.0; }
+
+  // After a clean field sample with innovation innovation_rad, once the observer has left its
+  // start: learns when every condition above holds. Returns the gain the rate took
+  // (dt / (τ τ_i)), 0 when it did not learn.
+  double learn(double innovation_rad, double dt_s, double turn_rate_rad_s);
+
+  // The correction added to the gyro's vertical rate (rad/s).
+  double rateRadS() const { return rate_rad_s_; }
+  // Back to an earlier value (the restore of eq. 4.4 undoes what a bad field taught).
+  void restore(double rate_rad_s) { rate_rad_s_ = rate_rad_s; }
+
+ private:
+  bool referenceIsRecent() const;
+
+  double time_constant_s_;           // τ_i; 0: off
+  double observer_time_constant_s_;  // τ
+  double max_turn_rad_s_;
+  double max_reference_age_s_;       // 0: no fix needed
+  double settle_s_;
+  double steady_heading_rad_;
+  double max_rate_rad_s_;
+  double rate_rad_s_ = 0.0;
+  double reference_age_s_;
+  double steady_s_ = 0.0;
+  double steady_anchor_rad_ = std::numeric_limits<double>::quiet_NaN();  // none yet
+};
+
+}  // namespace headingd::core

@@ -1,0 +1,45 @@
+#include "headingd/core/vertical_rate_error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace headingd::core {
+
+VerticalRateError::VerticalRateError(const EstimatorParams& p)
+    : time_constant_s_(p.mag_rate_error_time_constant_s),
+      observer_time_constant_s_(p.mag_heading_time_constant_s),
+      max_turn_rad_s_(p.mag_rate_error_max_turn_rad_s),
+      max_reference_age_s_(p.mag_rate_error_max_reference_age_s),
+      settle_s_(p.mag_rate_error_settle_s),
+      steady_heading_rad_(p.mag_rate_error_steady_heading_rad),
+      max_rate_rad_s_(p.bias_max_rad_s),
+      reference_age_s_(std::numeric_limits<double>::infinity()) {}
+
+void VerticalRateError::advance(double dt_s, const Quat& q_nb) {
+  if (time_constant_s_ <= 0.0) return;
+  reference_age_s_ += dt_s;
+  // Before the first fix nothing can be learned: no atan2 per sample on a recording without GPS.
+  if (max_reference_age_s_ > 0.0 && std::isinf(reference_age_s_)) return;
+  steady_s_ += dt_s;
+  const double heading_rad = yawZyx(q_nb);
+  if (!(std::abs(wrapAngle(heading_rad - steady_anchor_rad_)) <= steady_heading_rad_)) {
+    steady_anchor_rad_ = heading_rad;
+    steady_s_ = 0.0;
+  }
+}
+
+bool VerticalRateError::referenceIsRecent() const {
+  return max_reference_age_s_ <= 0.0 || reference_age_s_ <= max_reference_age_s_;
+}
+
+double VerticalRateError::learn(double innovation_rad, double dt_s, double turn_rate_rad_s) {
+  if (time_constant_s_ <= 0.0 || turn_rate_rad_s > max_turn_rad_s_ || steady_s_ < settle_s_) return 0.0;
+  if (!referenceIsRecent()) return 0.0;
+  // Ki = 1/(τ τ_i): the loop ψ̃'' + ψ̃'/τ + Ki ψ̃ = 0 has damping ratio ½ √(τ_i / τ).
+  const double gain = dt_s / (observer_time_constant_s_ * time_constant_s_);
+  rate_rad_s_ = std::clamp(rate_rad_s_ + innovation_rad * gain, -max_rate_rad_s_, max_rate_rad_s_);
+  return gain;
+}
+
+}  // namespace headingd::core
