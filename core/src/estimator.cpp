@@ -45,7 +45,7 @@ Estimator::Estimator(const EstimatorParams& params)
       heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave, p_.redefine_heading_after_s),
       mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
                         p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
-                        p_.mag_max_reference_dip_deviation_rad}),
+                        p_.mag_max_reference_dip_deviation_rad, p_.mag_back_to_before_s}),
       heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
                             p_.bias_walk_rad_s_per_sqrt_s}),
       mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}),

@@ -12,15 +12,39 @@ void MagDisturbanceDetector::setReference(double field_norm_uT, double inclinati
 
 MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_rad, double dt_s) {
   // Deviations are taken against the low-pass *before* this sample enters it.
-  norm_deviation_ = norm_lp_.initialised() ? std::abs(field_norm_uT - norm_lp_.value()) : 0.0;  // eq. 4.5
-  dip_deviation_ = dip_lp_.initialised() ? std::abs(dip_rad - dip_lp_.value()) : 0.0;
+  const bool initialised = norm_lp_.initialised();
+  const double norm_before_sample = initialised ? norm_lp_.value() : field_norm_uT;
+  const double dip_before_sample = initialised ? dip_lp_.value() : dip_rad;
+  norm_deviation_ = std::abs(field_norm_uT - norm_before_sample);  // eq. 4.5
+  dip_deviation_ = std::abs(dip_rad - dip_before_sample);
   norm_lp_.update(field_norm_uT, dt_s);
   dip_lp_.update(dip_rad, dt_s);
   norm_floor_.update(std::sqrt(norm_deviation2_.update(norm_deviation_ * norm_deviation_, dt_s)), dt_s);
   dip_floor_.update(std::sqrt(dip_deviation2_.update(dip_deviation_ * dip_deviation_, dt_s)), dt_s);
+  const double norm_threshold = norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT);
+  const double dip_threshold = dip_floor_.threshold(4.0, p_.max_dip_deviation_rad, 5.0 * p_.max_dip_deviation_rad);
   MagDisturbance d;
-  d.norm_jump = norm_deviation_ > norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT);
-  d.dip_jump = dip_deviation_ > dip_floor_.threshold(4.0, p_.max_dip_deviation_rad, 5.0 * p_.max_dip_deviation_rad);
+  d.norm_jump = norm_deviation_ > norm_threshold;
+  d.dip_jump = dip_deviation_ > dip_threshold;
+  if (p_.back_to_before_s > 0.0) {
+    const bool jump = d.norm_jump || d.dip_jump;
+    if (jump && !jumped_) {  // the onset: remember the field from before it
+      has_before_ = true;
+      before_norm_uT_ = norm_before_sample;
+      before_dip_rad_ = dip_before_sample;
+    }
+    const bool back = jump && has_before_ && std::abs(field_norm_uT - before_norm_uT_) <= norm_threshold &&
+                      std::abs(dip_rad - before_dip_rad_) <= dip_threshold;
+    back_s_ = back ? back_s_ + dt_s : 0.0;
+    if (back && back_s_ >= p_.back_to_before_s) {
+      d.norm_jump = d.dip_jump = false;
+      norm_lp_.reset(field_norm_uT);
+      dip_lp_.reset(dip_rad);
+      has_before_ = false;
+      back_s_ = 0.0;
+    }
+    jumped_ = d.norm_jump || d.dip_jump;
+  }
   if (has_reference_) {  // on the low-passes: a steady offset, not single noisy samples
     d.norm_reference = std::abs(norm_lp_.value() - reference_norm_uT_) > p_.max_reference_norm_deviation_uT;
     d.dip_reference = std::abs(dip_lp_.value() - reference_dip_rad_) > p_.max_reference_dip_deviation_rad;

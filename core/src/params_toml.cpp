@@ -54,6 +54,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"mag_min_horizontal_fraction", &P::mag_min_horizontal_fraction, 0.0, 1.0, "1"},
       {"mag_prefilter_time_constant_s", &P::mag_prefilter_time_constant_s, 0.0, 10.0, "s"},
       {"mag_disturbance_time_constant_s", &P::mag_disturbance_time_constant_s, 1e-3, 600.0, "s"},
+      {"mag_back_to_before_s", &P::mag_back_to_before_s, 0.0, 600.0, "s"},
       {"mag_max_norm_deviation_uT", &P::mag_max_norm_deviation_uT, 0.0, 1000.0, "uT"},
       {"mag_max_dip_deviation_rad", &P::mag_max_dip_deviation_rad, 0.0, 3.2, "rad"},
       {"mag_max_reference_norm_deviation_uT", &P::mag_max_reference_norm_deviation_uT, 0.0, 1000.0, "uT"},

@@ -173,6 +173,58 @@ TEST(MagDisturbance, DipChangeIsDisturbed) {
   EXPECT_GT(d.dipDeviation(), 0.07);
 }
 
+// The same with the return to the field from before the disturbance (0.3 s, the default).
+MagDisturbanceDetector returningDetector() {
+  MagDisturbanceParams p{};
+  p.time_constant_s = 3.0;
+  p.max_norm_deviation_uT = 3.0;
+  p.max_dip_deviation_rad = 0.07;
+  p.back_to_before_s = 0.3;
+  return MagDisturbanceDetector(p);
+}
+
+// Samples (at 100 Hz) until the detector says clean again after `spike_s` of a 300 µT
+// field with a wrong dip that then returns to 49 µT, 1.15 rad.
+int samplesDisturbedAfterASpike(MagDisturbanceDetector d, double spike_s) {
+  for (int i = 0; i < 500; ++i) EXPECT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
+  for (int i = 0; i < static_cast<int>(spike_s * 100); ++i) EXPECT_TRUE(disturbed(d.update(300.0, 0.3, 0.01)));
+  int count = 0;
+  while (disturbed(d.update(49.0, 1.15, 0.01)) && count < 100'000) ++count;
+  return count;
+}
+
+TEST(MagDisturbance, AFieldBackWhereItWasBeforeAPassingMagnetIsCleanAgainAfterAShortWhile) {
+  // The low-passes alone: ln(251 / 3) = 4.4 time constants, 13 s.
+  EXPECT_GT(samplesDisturbedAfterASpike(lowPassDetector(), 5.0), 1000);
+  // Back within the thresholds of the strength and dip from before the onset: the 30th
+  // sample back (0.3 s) is clean.
+  EXPECT_EQ(samplesDisturbedAfterASpike(returningDetector(), 5.0), 29);
+  // And the low-passes restart there: the next samples are clean, and a new disturbance is
+  // measured from there.
+  MagDisturbanceDetector d = returningDetector();
+  samplesDisturbedAfterASpike(d, 5.0);
+  for (int i = 0; i < 100; ++i) EXPECT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
+  EXPECT_TRUE(disturbed(d.update(54.0, 1.15, 0.01)));
+  EXPECT_NEAR(d.normDeviation(), 5.0, 0.01);
+}
+
+TEST(MagDisturbance, ALastingChangeOrAShortCrossingOfTheOldFieldWaitsForTheLowPasses) {
+  MagDisturbanceDetector d = returningDetector();
+  for (int i = 0; i < 500; ++i) ASSERT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
+  // A magnet attached: the strength moves to 70 µT and stays; as the sensor turns it passes
+  // through the old strength and dip for 0.2 s now and then.
+  int disturbed_samples = 0;
+  for (int i = 0; i < 300; ++i) disturbed_samples += disturbed(d.update(70.0, 1.15, 0.01)) ? 1 : 0;
+  for (int i = 0; i < 20; ++i) disturbed_samples += disturbed(d.update(49.0, 1.15, 0.01)) ? 1 : 0;
+  for (int i = 0; i < 300; ++i) disturbed_samples += disturbed(d.update(70.0, 1.15, 0.01)) ? 1 : 0;
+  // The crossing is back at the old field for less than 0.3 s: no return, all disturbed.
+  EXPECT_GT(disturbed_samples, 500);
+  // The lasting change is accepted once the low-pass has followed it, as without the return.
+  int more = 0;
+  while (disturbed(d.update(70.0, 1.15, 0.01)) && more < 100'000) ++more;
+  EXPECT_LT(more, 1000);
+}
+
 TEST(MagDisturbance, FirstSampleIsNotDisturbed) {
   MagDisturbanceDetector d = lowPassDetector();
   EXPECT_FALSE(disturbed(d.update(500.0, -1.0, 0.01)));
