@@ -27,11 +27,14 @@ MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_r
   d.norm_jump = norm_deviation_ > norm_threshold;
   d.dip_jump = dip_deviation_ > dip_threshold;
   if (p_.back_to_before_s > 0.0) {
+    // The field as it was: the low-passes, once the relative tests have passed for a while
+    // (a low-pass the disturbance has already moved is not "before").
     const bool jump = d.norm_jump || d.dip_jump;
-    if (jump && !jumped_) {  // the onset: remember the field from before it
+    clean_s_ = jump ? 0.0 : clean_s_ + dt_s;
+    if (clean_s_ >= p_.back_to_before_s) {
       has_before_ = true;
-      before_norm_uT_ = norm_before_sample;
-      before_dip_rad_ = dip_before_sample;
+      before_norm_uT_ = norm_lp_.value();
+      before_dip_rad_ = dip_lp_.value();
     }
     const bool back = jump && has_before_ && std::abs(field_norm_uT - before_norm_uT_) <= norm_threshold &&
                       std::abs(dip_rad - before_dip_rad_) <= dip_threshold;
@@ -40,10 +43,8 @@ MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_r
       d.norm_jump = d.dip_jump = false;
       norm_lp_.reset(field_norm_uT);
       dip_lp_.reset(dip_rad);
-      has_before_ = false;
       back_s_ = 0.0;
     }
-    jumped_ = d.norm_jump || d.dip_jump;
   }
   if (has_reference_) {  // on the low-passes: a steady offset, not single noisy samples
     d.norm_reference = std::abs(norm_lp_.value() - reference_norm_uT_) > p_.max_reference_norm_deviation_uT;

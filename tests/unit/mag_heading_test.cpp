@@ -173,13 +173,13 @@ TEST(MagDisturbance, DipChangeIsDisturbed) {
   EXPECT_GT(d.dipDeviation(), 0.07);
 }
 
-// The same with the return to the field from before the disturbance (0.3 s, the default).
+// The same with the return to the field from before the disturbance (0.5 s, the default).
 MagDisturbanceDetector returningDetector() {
   MagDisturbanceParams p{};
   p.time_constant_s = 3.0;
   p.max_norm_deviation_uT = 3.0;
   p.max_dip_deviation_rad = 0.07;
-  p.back_to_before_s = 0.3;
+  p.back_to_before_s = 0.5;
   return MagDisturbanceDetector(p);
 }
 
@@ -196,9 +196,9 @@ int samplesDisturbedAfterASpike(MagDisturbanceDetector d, double spike_s) {
 TEST(MagDisturbance, AFieldBackWhereItWasBeforeAPassingMagnetIsCleanAgainAfterAShortWhile) {
   // The low-passes alone: ln(251 / 3) = 4.4 time constants, 13 s.
   EXPECT_GT(samplesDisturbedAfterASpike(lowPassDetector(), 5.0), 1000);
-  // Back within the thresholds of the strength and dip from before the onset: the 30th
-  // sample back (0.3 s) is clean.
-  EXPECT_EQ(samplesDisturbedAfterASpike(returningDetector(), 5.0), 29);
+  // Back within the thresholds of the strength and dip it had while clean: the 50th sample
+  // back (0.5 s) is clean.
+  EXPECT_EQ(samplesDisturbedAfterASpike(returningDetector(), 5.0), 49);
   // And the low-passes restart there: the next samples are clean, and a new disturbance is
   // measured from there.
   MagDisturbanceDetector d = returningDetector();
@@ -212,12 +212,12 @@ TEST(MagDisturbance, ALastingChangeOrAShortCrossingOfTheOldFieldWaitsForTheLowPa
   MagDisturbanceDetector d = returningDetector();
   for (int i = 0; i < 500; ++i) ASSERT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
   // A magnet attached: the strength moves to 70 µT and stays; as the sensor turns it passes
-  // through the old strength and dip for 0.2 s now and then.
+  // through the old strength and dip for 0.4 s now and then.
   int disturbed_samples = 0;
   for (int i = 0; i < 300; ++i) disturbed_samples += disturbed(d.update(70.0, 1.15, 0.01)) ? 1 : 0;
-  for (int i = 0; i < 20; ++i) disturbed_samples += disturbed(d.update(49.0, 1.15, 0.01)) ? 1 : 0;
+  for (int i = 0; i < 40; ++i) disturbed_samples += disturbed(d.update(49.0, 1.15, 0.01)) ? 1 : 0;
   for (int i = 0; i < 300; ++i) disturbed_samples += disturbed(d.update(70.0, 1.15, 0.01)) ? 1 : 0;
-  // The crossing is back at the old field for less than 0.3 s: no return, all disturbed.
+  // The crossing is back at the old field for less than 0.5 s: no return, all disturbed.
   EXPECT_GT(disturbed_samples, 500);
   // The lasting change is accepted once the low-pass has followed it, as without the return.
   int more = 0;

@@ -19,12 +19,12 @@
 //
 // A strong passing disturbance (a magnet on the path: hundreds of µT for a few seconds) drags
 // the low-passes far away, and after it they take ln(excursion / threshold) time constants to
-// come back (a 300 µT spike, 16 s): the field is back long before the tests say so. So the
-// strength and dip from before the disturbance's onset are kept, and a field that is back
-// within both thresholds of them for back_to_before_s is clean again, the low-passes
-// restarting there. A lasting change (a magnet attached, a building) never matches them and
-// is still accepted only once the low-passes have followed it; a field that only passes
-// through the old values while it turns with an attached magnet does not stay there.
+// come back (a 300 µT spike, 13-16 s): the field is back long before the tests say so. So the
+// low-passes' strength and dip are remembered while the tests have passed for
+// back_to_before_s, and a field that is back within both thresholds of them for as long is
+// clean again, the low-passes restarting there. A lasting change (a magnet attached, a
+// building) that never returns is still accepted only once the low-passes have followed it;
+// a field that passes through the old values as it turns does not stay there.
 #include "headingd/core/low_pass.hpp"
 #include "headingd/core/noise_floor.hpp"
 
@@ -36,7 +36,7 @@ struct MagDisturbanceParams {
   double max_dip_deviation_rad;
   double max_reference_norm_deviation_uT;  // |low-passed ‖m‖ - F_WMM|
   double max_reference_dip_deviation_rad;  // |low-passed dip - I_WMM|
-  double back_to_before_s;                 // 0: the low-passes alone decide
+  double back_to_before_s;                 // 0: the low-passes alone decide (see above)
 };
 
 // Which tests found the sample disturbed (several may).
@@ -77,13 +77,13 @@ class MagDisturbanceDetector {
   NoiseFloor dip_floor_;
   double norm_deviation_ = 0.0;
   double dip_deviation_ = 0.0;
-  // The low-passes' strength and dip when the latest disturbance began, and for how long the
-  // field has been back within the thresholds of them.
+  // The low-passes' strength and dip when the field was last clean for back_to_before_s,
+  // how long it has been clean, and how long it has been back within the thresholds of them.
   bool has_before_ = false;
   double before_norm_uT_ = 0.0;
   double before_dip_rad_ = 0.0;
+  double clean_s_ = 0.0;
   double back_s_ = 0.0;
-  bool jumped_ = false;  // the previous sample failed a relative test
   bool has_reference_ = false;
   double reference_norm_uT_ = 0.0;
   double reference_dip_rad_ = 0.0;
