@@ -12,11 +12,8 @@ void MagDisturbanceDetector::setReference(double field_norm_uT, double inclinati
 
 MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_rad, double dt_s) {
   // Deviations are taken against the low-pass *before* this sample enters it.
-  const bool initialised = norm_lp_.initialised();
-  const double norm_before_sample = initialised ? norm_lp_.value() : field_norm_uT;
-  const double dip_before_sample = initialised ? dip_lp_.value() : dip_rad;
-  norm_deviation_ = std::abs(field_norm_uT - norm_before_sample);  // eq. 4.5
-  dip_deviation_ = std::abs(dip_rad - dip_before_sample);
+  norm_deviation_ = norm_lp_.initialised() ? std::abs(field_norm_uT - norm_lp_.value()) : 0.0;  // eq. 4.5
+  dip_deviation_ = dip_lp_.initialised() ? std::abs(dip_rad - dip_lp_.value()) : 0.0;
   norm_lp_.update(field_norm_uT, dt_s);
   dip_lp_.update(dip_rad, dt_s);
   norm_floor_.update(std::sqrt(norm_deviation2_.update(norm_deviation_ * norm_deviation_, dt_s)), dt_s);
