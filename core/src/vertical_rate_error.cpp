@@ -16,11 +16,9 @@ VerticalRateError::VerticalRateError(const EstimatorParams& p)
       max_rate_rad_s_(p.bias_max_rad_s),
       reference_age_s_(std::numeric_limits<double>::infinity()) {}
 
-void VerticalRateError::advance(double dt_s, const Quat& q_nb) {
-  if (time_constant_s_ <= 0.0) return;
-  reference_age_s_ += dt_s;
-  // Before the first fix nothing can be learned: no atan2 per sample on a recording without GPS.
-  if (max_reference_age_s_ > 0.0 && std::isinf(reference_age_s_)) return;
+void VerticalRateError::trackSteadyHeading(double dt_s, const Quat& q_nb) {
+  // Before the first fix advance() returns early: nothing can be learned, and no atan2 per
+  // sample is spent on a recording without GPS.
   steady_s_ += dt_s;
   const double heading_rad = yawZyx(q_nb);
   if (!(std::abs(wrapAngle(heading_rad - steady_anchor_rad_)) <= steady_heading_rad_)) {

@@ -28,7 +28,13 @@ class VerticalRateError {
 
   // Per sample: time passes; q_nb is the attitude after the gyro's prediction (its x-axis
   // heading is what has to stay steady).
-  void advance(double dt_s, const Quat& q_nb);
+  // Inline: on a recording without GPS (no fix yet) this is all there is per sample.
+  void advance(double dt_s, const Quat& q_nb) {
+    if (time_constant_s_ <= 0.0) return;
+    reference_age_s_ += dt_s;
+    if (max_reference_age_s_ > 0.0 && reference_age_s_ == std::numeric_limits<double>::infinity()) return;
+    trackSteadyHeading(dt_s, q_nb);
+  }
   // The World Magnetic Model's field was set from a fix just now.
   void referenceUpdated() { reference_age_s_ = 0.0; }
 
@@ -44,6 +50,7 @@ class VerticalRateError {
 
  private:
   bool referenceIsRecent() const;
+  void trackSteadyHeading(double dt_s, const Quat& q_nb);
 
   double time_constant_s_;           // τ_i; 0: off
   double observer_time_constant_s_;  // τ
