@@ -11,6 +11,7 @@
 
 #include "generalisation_support.hpp"
 #include "headingd/sim/phone_scenarios.hpp"
+#include "headingd/study/reference_delay.hpp"
 
 namespace headingd::generalisation_test {
 namespace {
@@ -26,6 +27,13 @@ double effectiveDelayS(const sim::SimResult& result) {
     ++count;
   }
   return sum / count;
+}
+
+// How old the field each row carries is, on average over all rows (held rows included).
+double meanFieldAgeS(const sim::SimResult& result) {
+  double sum = 0.0;
+  for (const auto& row : result.imu) sum += row.t_s - row.mag_truth_t_s;
+  return sum / static_cast<double>(result.imu.size());
 }
 
 struct DelayRun {
@@ -87,6 +95,26 @@ INSTANTIATE_TEST_SUITE_P(MagDelay, PhoneScenario, ::testing::ValuesIn(sim::phone
                            }
                            return name;
                          });
+
+// The study's check of the learned delay against a recording's reference
+// (reference_delay.hpp) finds the simulated phone's: the age of the field the rows carry,
+// and the interval-mean gyro half a sample late.
+TEST(ReferenceDelays, FoundAsSimulatedOnSwingingAndRunningPhones) {
+  for (const std::string scenario : {"phone-swinging", "phone-running"}) {
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      const sim::SimResult result = sim::simulate(sim::simConfig(scenario, seed, sim::ImuGrade::kPhone, 100.0),
+                                                  sim::phoneScenario(scenario, seed), wmm());
+      const study::ReferenceDelays d = study::measureReferenceDelays(study::fromSimulation(result, scenario));
+      const double age = meanFieldAgeS(result);
+      std::printf("%s seed %llu: field %.0f ms (its mean age %.1f ms), gyro %.0f ms\n", scenario.c_str(),
+                  static_cast<unsigned long long>(seed), 1e3 * d.mag_s, 1e3 * age, 1e3 * d.gyro_s);
+      ASSERT_TRUE(d.valid);
+      EXPECT_NEAR(d.mag_s, age, 0.005) << scenario << " seed " << seed;
+      EXPECT_NEAR(d.gyro_s, 0.005, 0.0015) << scenario << " seed " << seed;
+      EXPECT_LT(d.mag_spread_uT, d.mag_spread_at_zero_uT);
+    }
+  }
+}
 
 }  // namespace
 }  // namespace headingd::generalisation_test

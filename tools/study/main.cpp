@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <optional>
@@ -28,6 +29,7 @@
 #include "headingd/files/numeric_csv.hpp"
 #include "headingd/sim/simulation.hpp"
 #include "headingd/study/anchors.hpp"
+#include "headingd/study/reference_delay.hpp"
 #include "headingd/study/resample.hpp"
 #include "headingd/study/scoring.hpp"
 
@@ -78,7 +80,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
          "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,"
          "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
-         "yaw_err_deg,vertical_rate_correction_mrad_s\n";
+         "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
   std::vector<double> rate_sigmas;
@@ -99,7 +101,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDeg; };
     std::snprintf(line, sizeof line,
                   "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f\n",
+                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
@@ -108,7 +110,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2,
                   o.heading_sigma_rad * kDeg, o.mag_innovation_rad * kDeg, o.mag_gain, rate_sigmas[i] * kDeg,
                   o.heading_redefined ? 1 : 0, o.head_height, wrapped_deg(o.heading_rad - t.yaw_rad),
-                  wrapped_deg(o.yaw_rad - t.yaw_rad), 1e3 * o.vertical_rate_correction_rad_s);
+                  wrapped_deg(o.yaw_rad - t.yaw_rad), 1e3 * o.vertical_rate_correction_rad_s, 1e3 * o.mag_lag_s);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());
@@ -123,7 +125,33 @@ struct Row {
   // in the estimator's magnetic frame), after the fitted alignment on recordings.
   double heading_2sigma = 0.0;
   std::vector<study::RunScore> anchors;  // one per --anchors filter, in findAnchors' order
+  study::ReferenceDelays delays;         // with --reference-delays
+  double learned_mag_lag_s = 0.0;        // the estimator's, median over the second half
 };
+
+double medianOfSecondHalf(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto first = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  const auto middle = first + (v.end() - first) / 2;
+  std::nth_element(first, middle, v.end());
+  return *middle;
+}
+
+void printReferenceDelays(const std::vector<Row>& rows) {
+  std::printf("\ndelays against the reference (ms; reference_delay.hpp): the field's that makes it steadiest in "
+              "the earth frame (its spread there, and at 0 ms, uT), the gyro's, and what headingd learned and applied "
+              "(mag_lag, median of the second half)\n");
+  std::printf("%-46s %7s | %6s %13s | %6s | %8s\n", "run", "Hz", "field", "spread (0 ms)", "gyro", "headingd");
+  for (const Row& row : rows) {
+    if (!row.delays.valid) {
+      std::printf("%-46s %7.1f | too few samples with a reference\n", row.name.c_str(), row.rate_hz);
+      continue;
+    }
+    std::printf("%-46s %7.1f | %6.0f %5.2f (%5.2f) | %6.0f | %8.1f\n", row.name.c_str(), row.rate_hz,
+                1e3 * row.delays.mag_s, row.delays.mag_spread_uT, row.delays.mag_spread_at_zero_uT,
+                1e3 * row.delays.gyro_s, 1e3 * row.learned_mag_lag_s);
+  }
+}
 
 // One filter's figures in the side-by-side table: plain total, then fitted total / heading /
 // inclination (constant earth and body rotations fitted for each filter alone).
@@ -177,7 +205,10 @@ int main(int argc, char** argv) {
   std::string dir = HEADINGD_STUDY_BROAD_DIR, only;
   broad->add_option("--dir", dir, "folder of NN_name.csv.gz trials")->capture_default_str();
   broad->add_option("--only", only, "trials whose name contains this");
-  bool centred = false;
+  bool centred = false, reference_delays = false;
+  broad->add_flag("--reference-delays", reference_delays,
+                  "also measure how late the magnetometer and the gyro are against the reference attitude, and "
+                  "print them beside the magnetometer delay headingd learned");
   broad->add_flag("--centred", centred,
                   "resample accelerometer and magnetometer centred on each sample time (default: the interval "
                   "that ends at it, as an integrate-and-dump sensor)");
@@ -245,15 +276,21 @@ int main(int argc, char** argv) {
           r = study::resample(r, rate, centred ? study::VectorWindow::kCentred : study::VectorWindow::kTrailing);
         }
       }
-      std::vector<double> sigmas;
+      std::vector<double> sigmas, mag_lags;
       sigmas.reserve(r.size());
-      const auto est = study::runEstimator(
-          r, params, [&](std::size_t, const core::Estimator& e) { sigmas.push_back(e.output().heading_sigma_rad); });
+      const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
+        sigmas.push_back(e.output().heading_sigma_rad);
+        mag_lags.push_back(e.output().mag_lag_s);
+      });
       const double coverage =
           study::headingCoverage(r, *simulate ? est : study::alignedEstimates(r, est), sigmas, 2.0);
       rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg),
-                   coverage, {}};
+                   coverage, {}, {}, 0.0};
       for (const auto& a : anchors) rows[job].anchors.push_back(study::score(r, study::runAnchor(a, r)));
+      if (reference_delays) {
+        rows[job].delays = study::measureReferenceDelays(r);
+        rows[job].learned_mag_lag_s = medianOfSecondHalf(std::move(mag_lags));
+      }
       if (job == 0 && !trace.empty()) {
         const std::lock_guard lock(trace_mutex);
         writeTrace(trace, r, params);
@@ -290,6 +327,7 @@ int main(int argc, char** argv) {
                   worst_settle, 100.0 * sum_coverage / n);
     }
     if (!anchors.empty()) printSideBySide(rows, rates, anchors);
+    if (reference_delays) printReferenceDelays(rows);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-study: %s\n", e.what());
     return 1;
