@@ -20,7 +20,7 @@ TEST(Scenarios, DurationsAndRowCounts) {
       {"shake", 100.0}, {"shake-any", 100.0}, {"handheld", 100.0}, {"slow-rotation", 120.0},
       // The phone scenarios draw their opening rest (1-5 s) before 115 s of walking (running: 110 s).
       {"phone-texting", 115.0}, {"phone-calling", 115.0}, {"phone-swinging", 115.0}, {"phone-pocket", 115.0},
-      {"phone-running", 110.0}};
+      {"phone-running", 110.0}, {"phone-running-circles", 110.0}};
   ASSERT_EQ(sim::scenarioNames().size(), expected.size());
   for (const std::string& name : sim::scenarioNames()) {
     const sim::Scenario s = sim::makeScenario(name);

@@ -15,7 +15,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build="$here/build" seeds=5 rates="100 50" grades="mems consumer phone" only="" sets=()
 scenarios="urban-walk run crawl thesis-declination shake shake-any handheld slow-rotation
-           phone-texting phone-calling phone-swinging phone-pocket phone-running"
+           phone-texting phone-calling phone-swinging phone-pocket phone-running phone-running-circles"
 while [[ $# -gt 0 ]]; do
   case $1 in
     --build) build=$2; shift 2 ;;

@@ -20,7 +20,14 @@ constexpr double kDeg = kPi / 180.0;
 
 // Stream ids for the phone scenarios' draws (independent of the other scenarios' and of
 // simulation.cpp's sensor streams).
-enum PhoneStream : std::uint64_t { kPhoneTexting = 111, kPhoneCalling, kPhoneSwinging, kPhonePocket, kPhoneRunning };
+enum PhoneStream : std::uint64_t {
+  kPhoneTexting = 111,
+  kPhoneCalling,
+  kPhoneSwinging,
+  kPhonePocket,
+  kPhoneRunning,
+  kPhoneRunningCircles
+};
 
 // Body geometry. A person of 1.75 m with the body's reference point (the torso point the
 // walking trajectory moves, 1.3 m up) on the chest; segment lengths and joint heights as
@@ -167,6 +174,25 @@ std::vector<Turn> roomLoops(Rng& rng, double duration_s, double speed_mps, doubl
   }
 }
 
+// Running round and round in a small hall, as the shared phone recordings' runners do (80-87 %
+// of the time turning at about 1.1 rad/s, ~20 turns in two minutes: circles of ~3 m radius at
+// 3 m/s): one full circle of radius 2-5 m after another, each a single turn of 360 deg, now
+// and then the other way round (a figure of eight). The centripetal acceleration, v²/r ≈ 2-4.5
+// m/s², turns with the runner once per circle.
+std::vector<Turn> circles(Rng& rng, double duration_s, double speed_mps) {
+  std::vector<Turn> turns;
+  double way = side(rng);
+  double t = 1.0;
+  for (;;) {
+    const double radius_m = rng.uniform(1.5, 3.5);
+    const double circle_s = 2.0 * kPi * radius_m / speed_mps;
+    if (t + circle_s > duration_s - 1.0) return turns;
+    turns.push_back({t, circle_s, way * 360.0});
+    t += circle_s;
+    if (rng.uniform01() < 0.25) way = -way;
+  }
+}
+
 // The room (or hall) the person walks through: indoors (no GPS fix), and a field varying
 // with position. 0.5-1 µT per axis (field_model.cpp's spatial modes, 2-12 m wavelengths): at
 // the default place (horizontal field ~15 µT) the field's direction varies by ~2-4 deg RMS,
@@ -181,7 +207,9 @@ Phase indoor(Activity a, double duration_s, const FieldDisturbanceSpec& room, st
   return p;
 }
 
-Scenario phoneWalk(Rng& rng, std::string name, std::string description, CarrySpec carry, bool runs) {
+enum class Course { kRoomLoops, kHallRuns, kCircleRuns };
+
+Scenario phoneWalk(Rng& rng, std::string name, std::string description, CarrySpec carry, Course course) {
   Scenario s;
   s.name = std::move(name);
   s.description = std::move(description);
@@ -193,15 +221,17 @@ Scenario phoneWalk(Rng& rng, std::string name, std::string description, CarrySpe
   rest.held_still = true;
   s.phases.push_back(rest);
   const double walk_speed = gaitParams(Activity::kWalking).speed_mps;
-  if (runs) {
-    // Walk 15 s, run 80 s along a hall (legs of 15-30 m), walk 15 s.
-    s.phases.push_back(indoor(Activity::kWalking, 15.0, room, roomLoops(rng, 15.0, walk_speed, 4.0, 9.0)));
-    s.phases.push_back(indoor(Activity::kRunning, 80.0, room,
-                              roomLoops(rng, 80.0, gaitParams(Activity::kRunning).speed_mps, 15.0, 30.0)));
-    s.phases.push_back(indoor(Activity::kWalking, 15.0, room, roomLoops(rng, 15.0, walk_speed, 4.0, 9.0)));
-  } else {
+  if (course == Course::kRoomLoops) {
     // 115 s of loops through a room, legs of 4-9 m.
     s.phases.push_back(indoor(Activity::kWalking, 115.0, room, roomLoops(rng, 115.0, walk_speed, 4.0, 9.0)));
+  } else {
+    // Walk 15 s, run 80 s along a hall (legs of 15-30 m) or round in circles, walk 15 s.
+    const double run_speed = gaitParams(Activity::kRunning).speed_mps;
+    s.phases.push_back(indoor(Activity::kWalking, 15.0, room, roomLoops(rng, 15.0, walk_speed, 4.0, 9.0)));
+    s.phases.push_back(indoor(Activity::kRunning, 80.0, room,
+                              course == Course::kCircleRuns ? circles(rng, 80.0, run_speed)
+                                                            : roomLoops(rng, 80.0, run_speed, 15.0, 30.0)));
+    s.phases.push_back(indoor(Activity::kWalking, 15.0, room, roomLoops(rng, 15.0, walk_speed, 4.0, 9.0)));
   }
   s.gps = {0.0, 0.0, 10};  // indoors: never a fix
   s.carry = std::move(carry);
@@ -215,7 +245,7 @@ const char* kRoom =
 }  // namespace
 
 std::vector<std::string> phoneScenarioNames() {
-  return {"phone-texting", "phone-calling", "phone-swinging", "phone-pocket", "phone-running"};
+  return {"phone-texting", "phone-calling", "phone-swinging", "phone-pocket", "phone-running", "phone-running-circles"};
 }
 
 bool isPhoneScenario(const std::string& name) {
@@ -230,7 +260,7 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
     return phoneWalk(rng, name,
                      std::string("A phone held in front, screen up, top raised 20-45 deg, bobbing 2 deg with the "
                                  "stride (seeded).") + kRoom,
-                     std::move(carry), false);
+                     std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-calling") {
     Rng rng = Rng::stream(seed, kPhoneCalling);
@@ -238,7 +268,7 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
     return phoneWalk(rng, name,
                      std::string("A phone at the left or right ear, top up and back 60-80 deg above level "
                                  "(seeded).") + kRoom,
-                     std::move(carry), false);
+                     std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-swinging") {
     Rng rng = Rng::stream(seed, kPhoneSwinging);
@@ -246,7 +276,7 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
     return phoneWalk(rng, name,
                      std::string("A phone in the hand of the hanging arm, swung +-30-60 deg with the gait, 0.62 m "
                                  "below the shoulder (seeded).") + kRoom,
-                     std::move(carry), false);
+                     std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-pocket") {
     Rng rng = Rng::stream(seed, kPhonePocket);
@@ -254,7 +284,7 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
     return phoneWalk(rng, name,
                      std::string("A phone in a front or back trouser pocket, upright or upside down, left or right "
                                  "(seeded), turning with the thigh (10 +- 20 deg).") + kRoom,
-                     std::move(carry), false);
+                     std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-running") {
     Rng rng = Rng::stream(seed, kPhoneRunning);
@@ -264,7 +294,16 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
                      "15 +- 30 deg), seeded. Starts still for 1-5 s, walks 15 s, runs 80 s along a hall (legs "
                      "15-30 m, 80-100 deg turns), walks 15 s; the field varies 0.5-1 uT per axis with position; "
                      "indoors.",
-                     std::move(carry), true);
+                     std::move(carry), Course::kHallRuns);
+  }
+  if (name == "phone-running-circles") {
+    Rng rng = Rng::stream(seed, kPhoneRunningCircles);
+    CarrySpec carry = rng.uniform01() < 0.5 ? drawRunningHandCarry(rng) : drawPocketCarry(rng);
+    return phoneWalk(rng, name,
+                     "A phone in the hand or in a trouser pocket as in phone-running (seeded). Starts still for "
+                     "1-5 s, walks 15 s of loops, runs 80 s round and round (circles of 2-5 m radius, now and then "
+                     "the other way round), walks 15 s; the field varies 0.5-1 uT per axis with position; indoors.",
+                     std::move(carry), Course::kCircleRuns);
   }
   throw std::invalid_argument("unknown phone scenario '" + name + "'");
 }

@@ -26,7 +26,8 @@ CarrySpec drawPocketCarry(Rng& rng);
 // In the hand of a running person: elbow bent, the forearm forward, swinging with the arm.
 CarrySpec drawRunningHandCarry(Rng& rng);
 
-// "phone-texting", "phone-calling", "phone-swinging", "phone-pocket", "phone-running".
+// "phone-texting", "phone-calling", "phone-swinging", "phone-pocket", "phone-running",
+// "phone-running-circles".
 std::vector<std::string> phoneScenarioNames();
 bool isPhoneScenario(const std::string& name);
 // Throws std::invalid_argument for a name phoneScenarioNames does not list.
