@@ -15,6 +15,16 @@ constexpr double kSettleTimeConstants = 3.0;
 // magnetometer's disturbance tests must not take the field's view of the vertical away.
 constexpr double kMaxFieldGapS = 0.1;
 constexpr double kMaxFieldGapShare = 0.2;
+// A provisional block cut back to its quiet part counts if that part is at least this share of
+// rest_min_duration_s.
+constexpr double kMinQuietShare = 0.5;
+// The stretch's quietest RMS is taken from this many of the low-pass's time constants on: the
+// running means' first moments understate it (a hand's tremor at 1 τ: 0.017 against 0.042 rad/s
+// later, simulated hand-held, seed 2).
+constexpr double kQuietFromTimeConstants = 2.0;
+// The provisional block's course is kept for this many samples: the floor's 2 s warm-up at
+// 1 kHz (at higher rates its first part only).
+constexpr std::size_t kProvisionalCoursePoints = 2048;
 
 // [u]×: [u]× v = u × v.
 Mat3 skew(const Vec3& u) {
@@ -34,7 +44,10 @@ RestDetector::RestDetector(const EstimatorParams& p)
       mag_(p.rest_filter_time_constant_s),
       gyro_floor_(4.0 * p.rest_filter_time_constant_s),
       accel_floor_(4.0 * p.rest_filter_time_constant_s),
-      mag_floor_(4.0 * p.rest_filter_time_constant_s) {}
+      mag_floor_(4.0 * p.rest_filter_time_constant_s) {
+  // Once, here: the estimator's loop does not allocate.
+  provisional_course_.reserve(kProvisionalCoursePoints);
+}
 
 double RestDetector::SteadyVector::update(const Vec3& v, double dt_s) {
   elapsed_s += dt_s;
@@ -58,7 +71,8 @@ double RestDetector::SteadyVector::directionSigma(const NoiseFloor& floor, doubl
   return std::max(1e-5, rms * std::sqrt(dt_s / (2.0 * time_constant_s)) / norm);
 }
 
-bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) const {
+bool RestDetector::measuredTurn(double dt_s, double block_s, const Vec3& accel_end, const Vec3& mag_end,
+                                Vec3* turn_rad, Mat3* covariance) const {
   // A world-fixed unit vector seen from a sensor that turns by θ (sensor axes) moves by
   // Δu = u₀ × θ = [u₀]× θ. Gravity and the field each measure θ so, weighted by their
   // direction noise (the start and the end mean each contribute): in information form
@@ -72,7 +86,7 @@ bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) c
   // horizontal axes, and indoors, where the field is often disturbed, that is how the
   // vertical bias is learned; a slow steady turn about the vertical then counts as bias).
   const double tau = p_.rest_filter_time_constant_s;
-  const double prior_sigma = 0.5 * p_.rest_max_turn_rate_rad_s * block_time_s_;
+  const double prior_sigma = 0.5 * p_.rest_max_turn_rate_rad_s * block_s;
   const double prior_variance = std::max(prior_sigma * prior_sigma, 1e-12);
   Mat3 measured_information = Mat3::Zero();
   Vec3 projected = Vec3::Zero();
@@ -83,10 +97,10 @@ bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) c
   Seen seen[2];
   int count = 0;
   const double accel_sigma = accel_.directionSigma(accel_floor_, dt_s, tau);
-  seen[count++] = {accel_.start_direction, accel_.direction(), 2.0 * accel_sigma * accel_sigma};
+  seen[count++] = {accel_.start_direction, accel_end, 2.0 * accel_sigma * accel_sigma};
   if (mag_in_block_) {
     const double mag_sigma = mag_.directionSigma(mag_floor_, dt_s, tau);
-    seen[count++] = {mag_.start_direction, mag_.direction(), 2.0 * mag_sigma * mag_sigma};
+    seen[count++] = {mag_.start_direction, mag_end, 2.0 * mag_sigma * mag_sigma};
   }
   for (int i = 0; i < count; ++i) {
     const Vec3& u = seen[i].start;
@@ -119,8 +133,36 @@ bool RestDetector::measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) c
   return true;
 }
 
+bool RestDetector::judgeBlock(double dt_s, double block_s, const Vec3& rotation, const Vec3& accel_end,
+                              const Vec3& mag_end) {
+  Vec3 turn;
+  Mat3 turn_covariance;
+  const bool still = measuredTurn(dt_s, block_s, accel_end, mag_end, &turn, &turn_covariance) &&
+                     turn.norm() <= p_.rest_max_turn_rate_rad_s * block_s;
+  at_rest_ = still;
+  if (still) {
+    // ∫ω̄ dt over T carries the gyro's white noise as ∫ω dt does: σ² dt T, σ² the samples'
+    // mean squared deviation.
+    Mat3 covariance = (gyro_.deviation2 * dt_s / block_s) * Mat3::Identity();
+    covariance += turn_covariance / (block_s * block_s);
+    block_ = {(rotation - turn) / block_s, block_s, covariance};
+  }
+  return still;
+}
+
+bool RestDetector::judgeQuietPart(double dt_s, double bound) {
+  // The last point before the RMS first rose above the bound.
+  std::size_t quiet = 0;
+  while (quiet < provisional_course_.size() && provisional_course_[quiet].gyro_rms < bound) ++quiet;
+  if (quiet == 0) return false;
+  const BlockPoint& end = provisional_course_[quiet - 1];
+  if (end.time_s < kMinQuietShare * p_.rest_min_duration_s) return false;
+  return judgeBlock(dt_s, end.time_s, end.rotation, end.accel_direction, end.mag_direction);
+}
+
 void RestDetector::startBlock(bool with_mag) {
   in_block_ = true;
+  provisional_course_.clear();
   block_time_s_ = 0.0;
   block_rotation_.setZero();
   accel_.markStart();
@@ -159,12 +201,37 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
   const bool floor_known = std::isfinite(gyro_floor_.value());
   const double gyro_bound =
       gyro_floor_.threshold(2.5, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s);
-  if (!floor_known) provisional_gyro_rms_ = std::max(provisional_gyro_rms_, gyro_rms);
-  const bool gyro_steady = floor_known ? gyro_rms < gyro_bound && provisional_gyro_rms_ < gyro_bound
+  if (!floor_known) {
+    provisional_gyro_rms_ = std::max(provisional_gyro_rms_, gyro_rms);
+    if (gyro_.elapsed_s >= kQuietFromTimeConstants * p_.rest_filter_time_constant_s) {
+      provisional_min_rms_ = std::min(provisional_min_rms_, gyro_rms);
+    }
+  }
+  // The floor's first value is the RMS of the moment it becomes known: if the stretch has
+  // turned into a motion by then (an opening rest shorter than the floor's warm-up), that value
+  // is the motion's. The stretch's own quietest RMS bounds it too.
+  const double provisional_bound = std::min(
+      gyro_bound,
+      std::clamp(2.5 * provisional_min_rms_, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s));
+  const bool provisional_failed = floor_known && provisional_gyro_rms_ >= provisional_bound;
+  const bool gyro_steady = floor_known ? gyro_rms < gyro_bound && !provisional_failed
                                        : gyro_rms < p_.rest_gyro_max_threshold_rad_s;
   const bool steady = gyro_steady && accel_rms < p_.rest_accel_threshold_m_s2 &&
                       gyro_.mean.norm() <= p_.bias_max_rad_s + p_.rest_max_turn_rate_rad_s;
-  if (floor_known) provisional_gyro_rms_ = 0.0;  // held against the bound once, above
+  if (floor_known) {
+    provisional_gyro_rms_ = 0.0;  // held against the bound once, above
+    provisional_min_rms_ = std::numeric_limits<double>::infinity();
+  }
+  if (provisional_failed && in_block_) {
+    // Its quiet start may still be a rest: judged alone, and the stretch ends here.
+    const bool quiet_still = judgeQuietPart(dt_s, provisional_bound);
+    provisional_course_.clear();
+    steady_s_ = 0.0;
+    settle_time_constants_ = kSettleTimeConstants;
+    in_block_ = false;
+    at_rest_ = false;
+    return quiet_still;
+  }
   if (!steady) {
     steady_s_ = 0.0;
     // After a motion the low-passed means still hold it for a few time constants.
@@ -180,21 +247,14 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
   // The low-passed rate: its integral over the block is the turn the low-passed directions
   // below see (the filter is linear), so the two compare over the same stretch of time.
   block_rotation_ += gyro_.mean * dt_s;
+  if (!floor_known && provisional_course_.size() < kProvisionalCoursePoints) {
+    provisional_course_.push_back({block_time_s_, block_rotation_, accel_.direction(),
+                                   mag_in_block_ ? mag_.direction() : Vec3::Zero(), gyro_rms});
+  }
   if (block_time_s_ < p_.rest_min_duration_s || !floor_known) return false;
 
-  Vec3 turn;
-  Mat3 turn_covariance;
-  const bool still = measuredTurn(dt_s, &turn, &turn_covariance) &&
-                     turn.norm() <= p_.rest_max_turn_rate_rad_s * block_time_s_;
-  at_rest_ = still;
-  if (still) {
-    const double T = block_time_s_;
-    // ∫ω̄ dt over T carries the gyro's white noise as ∫ω dt does: σ² dt T, σ² the samples'
-    // mean squared deviation.
-    Mat3 covariance = (gyro_.deviation2 * dt_s / T) * Mat3::Identity();
-    covariance += turn_covariance / (T * T);
-    block_ = {(block_rotation_ - turn) / T, T, covariance};
-  }
+  const bool still = judgeBlock(dt_s, block_time_s_, block_rotation_, accel_.direction(),
+                                mag_in_block_ ? mag_.direction() : Vec3::Zero());
   startBlock(mag_uT != nullptr);  // the next block begins where this one ended
   return still;
 }

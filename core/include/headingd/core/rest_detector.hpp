@@ -13,7 +13,12 @@
 //    the gyro's test is provisional: the stretch's largest RMS is kept and held against the
 //    bound once the floor is known, and no block ends before. A fixed bound there missed the
 //    1-5 s opening rests of noisy phone and consumer gyros (0.01-0.04 rad/s per sample):
-//    their bias was then never learned (issue 28);
+//    their bias was then never learned (issue 28). The bound is then also 2.5 times the
+//    stretch's own quietest RMS: the floor's first value is the RMS of the moment it becomes
+//    known, a motion's when the rest was shorter than the warm-up, and a block with a motion's
+//    start in it passed (30 mrad/s of bias learned wrong, simulated phone-running-circles).
+//    A block that fails it is cut back to where its RMS was still quiet, and counts if that
+//    part is at least half a block;
 //  - the mean rate is no more than a plausible bias plus a slow turn;
 // and the world's vectors say how far it turned: from the block's start to its end the
 // low-passed directions of gravity (accelerometer) and, when the field is usable and
@@ -38,6 +43,9 @@
 // away with the block they end; and after a motion the first block starts only once the
 // low-passes have settled from it (3 of their time constants of steadiness; at start-up they
 // begin as running means and need one).
+#include <limits>
+#include <vector>
+
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/low_pass.hpp"
 #include "headingd/core/noise_floor.hpp"
@@ -85,9 +93,17 @@ class RestDetector {
   };
 
   void startBlock(bool with_mag);
-  // The block's turn from gravity (and the field) and its covariance, or false if they do not
-  // fit one rotation.
-  bool measuredTurn(double dt_s, Vec3* turn_rad, Mat3* covariance) const;
+  // The block's turn from gravity (and the field), from their directions at its start to
+  // accel_end and mag_end, over block_s, and its covariance, or false if they do not fit one
+  // rotation.
+  bool measuredTurn(double dt_s, double block_s, const Vec3& accel_end, const Vec3& mag_end, Vec3* turn_rad,
+                    Mat3* covariance) const;
+  // The still block's bias from its integral and measured turn over block_s, or false when the
+  // turn is not one rotation or too large. at_rest_ follows.
+  bool judgeBlock(double dt_s, double block_s, const Vec3& rotation, const Vec3& accel_end, const Vec3& mag_end);
+  // Of the provisional stretch's block (the gyro floor unknown when it began), the part before
+  // its RMS rose above `bound`: its bias, if that part is long enough and still.
+  bool judgeQuietPart(double dt_s, double bound);
 
   EstimatorParams p_;  // a copy: the owner may be copied or moved (gyro_bias_estimator.hpp)
   SteadyVector gyro_;
@@ -99,6 +115,16 @@ class RestDetector {
   bool at_rest_ = false;
   double steady_s_ = 0.0;  // how long the steady tests have held
   double provisional_gyro_rms_ = 0.0;  // largest gyro RMS of the stretch before the floor was known
+  double provisional_min_rms_ = std::numeric_limits<double>::infinity();  // and its smallest, once settled
+  // The block's course while the floor is unknown, sample by sample: what judgeQuietPart cuts.
+  struct BlockPoint {
+    double time_s;
+    Vec3 rotation;
+    Vec3 accel_direction;
+    Vec3 mag_direction;
+    double gyro_rms;
+  };
+  std::vector<BlockPoint> provisional_course_;
   // Time constants of steadiness before a block may start: one at start-up (the running means
   // have then seen a time constant's samples), three after a motion (they still hold it).
   double settle_time_constants_ = 1.0;
