@@ -222,23 +222,16 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
     provisional_gyro_rms_ = 0.0;  // held against the bound once, above
     provisional_min_rms_ = std::numeric_limits<double>::infinity();
   }
-  if (provisional_failed && in_block_) {
-    // Its quiet start may still be a rest: judged alone, and the stretch ends here.
-    const bool quiet_still = judgeQuietPart(dt_s, provisional_bound);
-    provisional_course_.clear();
-    steady_s_ = 0.0;
-    settle_time_constants_ = kSettleTimeConstants;
-    in_block_ = false;
-    at_rest_ = false;
-    return quiet_still;
-  }
+  // A failed provisional block's quiet start may still be a rest: judged alone (the stretch
+  // ends here all the same).
+  const bool quiet_part_still = provisional_failed && in_block_ && judgeQuietPart(dt_s, provisional_bound);
   if (!steady) {
     steady_s_ = 0.0;
     // After a motion the low-passed means still hold it for a few time constants.
     settle_time_constants_ = kSettleTimeConstants;
     in_block_ = false;
     at_rest_ = false;
-    return false;
+    return quiet_part_still;
   }
   steady_s_ += dt_s;
   if (steady_s_ < settle_time_constants_ * p_.rest_filter_time_constant_s) return false;
