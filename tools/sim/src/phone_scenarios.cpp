@@ -238,6 +238,13 @@ Scenario phoneWalk(Rng& rng, std::string name, std::string description, CarrySpe
   return s;
 }
 
+// A running person's phone: in the hand or in a trouser pocket, an even draw.
+Scenario phoneRun(std::uint64_t seed, PhoneStream stream, std::string name, const char* description, Course course) {
+  Rng rng = Rng::stream(seed, stream);
+  CarrySpec carry = rng.uniform01() < 0.5 ? drawRunningHandCarry(rng) : drawPocketCarry(rng);
+  return phoneWalk(rng, std::move(name), description, std::move(carry), course);
+}
+
 const char* kRoom =
     " Starts still for 1-5 s, then walks loops through a room (legs 4-9 m, 80-100 deg turns, now and then "
     "a turn back) whose field varies 0.5-1 uT per axis with position (a few degrees of direction); indoors.";
@@ -287,23 +294,20 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
                      std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-running") {
-    Rng rng = Rng::stream(seed, kPhoneRunning);
-    CarrySpec carry = rng.uniform01() < 0.5 ? drawRunningHandCarry(rng) : drawPocketCarry(rng);
-    return phoneWalk(rng, name,
-                     "A phone in the hand (elbow bent, arm swinging +-30-45 deg) or in a trouser pocket (thigh "
-                     "15 +- 30 deg), seeded. Starts still for 1-5 s, walks 15 s, runs 80 s along a hall (legs "
-                     "15-30 m, 80-100 deg turns), walks 15 s; the field varies 0.5-1 uT per axis with position; "
-                     "indoors.",
-                     std::move(carry), Course::kHallRuns);
+    return phoneRun(seed, kPhoneRunning, name,
+                    "A phone in the hand (elbow bent, arm swinging +-30-45 deg) or in a trouser pocket (thigh "
+                    "15 +- 30 deg), seeded. Starts still for 1-5 s, walks 15 s, runs 80 s along a hall (legs "
+                    "15-30 m, 80-100 deg turns), walks 15 s; the field varies 0.5-1 uT per axis with position; "
+                    "indoors.",
+                    Course::kHallRuns);
   }
   if (name == "phone-running-circles") {
-    Rng rng = Rng::stream(seed, kPhoneRunningCircles);
-    CarrySpec carry = rng.uniform01() < 0.5 ? drawRunningHandCarry(rng) : drawPocketCarry(rng);
-    return phoneWalk(rng, name,
-                     "A phone in the hand or in a trouser pocket as in phone-running (seeded). Starts still for "
-                     "1-5 s, walks 15 s of loops, runs 80 s round and round (circles of 2-5 m radius, now and then "
-                     "the other way round), walks 15 s; the field varies 0.5-1 uT per axis with position; indoors.",
-                     std::move(carry), Course::kCircleRuns);
+    return phoneRun(seed, kPhoneRunningCircles, name,
+                    "A phone in the hand or in a trouser pocket as in phone-running (seeded). Starts still for "
+                    "1-5 s, walks 15 s of loops, runs 80 s round and round (circles of 1.5-3.5 m radius, now and "
+                    "then the other way round), walks 15 s; the field varies 0.5-1 uT per axis with position; "
+                    "indoors.",
+                    Course::kCircleRuns);
   }
   throw std::invalid_argument("unknown phone scenario '" + name + "'");
 }
