@@ -173,7 +173,8 @@ Vec3 TriadSensor::measure(const Vec3& truth) {
   const Vec3 walk_step = rng_.gaussian3();
   const Vec3 markov_step = rng_.gaussian3();
   const Vec3 white = rng_.gaussian3();
-  const Vec3 y = d_ * truth + offset_ + walk_ + markov_ + white_sigma_.cwiseProduct(white);
+  Vec3 y = d_ * truth + offset_ + walk_ + markov_ + white_sigma_.cwiseProduct(white);
+  if (p_.full_scale > 0.0) y = y.cwiseMax(-p_.full_scale).cwiseMin(p_.full_scale);
   walk_ += std::sqrt(dt_s_) * p_.bias_walk_density.cwiseProduct(walk_step);
   for (int i = 0; i < 3; ++i) {
     // Exact discretisation of b' = -b/τ + w with stationary σ: b ← φ b + σ √(1-φ²) n.

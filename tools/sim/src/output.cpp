@@ -157,6 +157,7 @@ void writeSensorErrors(std::ostream& out, const SimResult& r) {
            t.distortion(2, 0), t.distortion(2, 1), t.distortion(2, 2));
     append(s, "offset = [%.12g, %.12g, %.12g]\n", t.offset.x(), t.offset.y(), t.offset.z());
     append(s, "white_sigma = [%.12g, %.12g, %.12g]\n", t.white_sigma.x(), t.white_sigma.y(), t.white_sigma.z());
+    if (t.full_scale > 0.0) append(s, "full_scale = %.9g  # each axis saturates at +-this\n", t.full_scale);
   };
   triad("gyro", r.gyro, "rad/s");
   triad("accel", r.accel, "m/s^2");

@@ -1,6 +1,8 @@
 #include "headingd/sim/phone_imu.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace headingd::sim {
 
@@ -21,6 +23,9 @@ double uniform(Rng& rng, const DrawRange& r) { return rng.uniform(r.lo, r.hi); }
 //           400; phone magnetometers (AK09911/AK09915/AK8963): 0.15-0.6 µT resolution, 0.3-0.6
 //           µT RMS noise, more with the phone's own fields.
 //   [consumer] the consumer grade (imu_model.cpp), a 2014 smartphone (MAGYQ's tables).
+//   [shared phones] ../shared/data/phones: the Nexus 5's and iPhone 4S's accelerometers read
+//           at most ±2 g (19.5-20.1 m/s², values piled up there while running), the iPhone
+//           5's up to 45 m/s².
 // Log-uniform where the range spans a factor of several, so each decade is as likely.
 ImuModel drawPhoneImu(double field_strength_uT, Rng& rng) {
   ImuModel m;
@@ -44,6 +49,10 @@ ImuModel drawPhoneImu(double field_strength_uT, Rng& rng) {
   t.mag_first_sample_s = rng.uniform(0.0, 1.0 / t.mag_rate_hz);  // the two clocks' phase
   t.mag_lag_s = uniform(rng, PhoneRanges::kMagLag_s);
   t.accel_lag_s = uniform(rng, PhoneRanges::kAccelLag_s);  // "a few ms"
+  // Drawn last, so that every earlier draw (and every run without clipping) is as it was.
+  const auto& scales = PhoneRanges::kAccelFullScale_m_s2;
+  const auto pick = static_cast<std::size_t>(rng.uniform01() * static_cast<double>(std::size(scales)));
+  accel.full_scale = scales[std::min(pick, std::size(scales) - 1)];  // [shared phones]
   return m;
 }
 

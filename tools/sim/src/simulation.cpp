@@ -114,9 +114,9 @@ SimResult simulate(const SimConfig& config, const Scenario& scenario, const core
   TriadSensor gyro(model.errors.gyro, config.imu_rate_hz, Rng::stream(config.seed, kGyro));
   TriadSensor accel(model.errors.accel, config.imu_rate_hz, Rng::stream(config.seed, kAccel));
   TriadSensor mag(model.errors.mag, slow_mag ? timing.mag_rate_hz : config.imu_rate_hz, Rng::stream(config.seed, kMag));
-  r.gyro = {gyro.distortion(), gyro.offset(), gyro.whiteSigma()};
-  r.accel = {accel.distortion(), accel.offset(), accel.whiteSigma()};
-  r.mag = {mag.distortion(), mag.offset(), mag.whiteSigma()};
+  r.gyro = {gyro.distortion(), gyro.offset(), gyro.whiteSigma(), gyro.fullScale()};
+  r.accel = {accel.distortion(), accel.offset(), accel.whiteSigma(), accel.fullScale()};
+  r.mag = {mag.distortion(), mag.offset(), mag.whiteSigma(), mag.fullScale()};
 
   // First the true signals of every row, then the sensors read them (a late sensor reads an
   // earlier row's).

@@ -23,6 +23,7 @@ struct TriadErrorParams {
   double scale_half_width = 0.0;         // D_ii = 1 + U(-h, h)
   double skew_half_width_rad = 0.0;      // ζ, η, ρ of D_skew ~ U(-h, h)
   double rotation_half_width_rad = 0.0;  // zyx angles of D_rot ~ U(-h, h)
+  double full_scale = 0.0;  // each axis reads at most ±this (the sensor saturates); 0: no limit
 };
 
 // ideal: no errors at all. consumer: a calibrated consumer-grade MEMS IMU (the default), with
@@ -82,6 +83,7 @@ class TriadSensor {
   const core::Vec3& offset() const { return offset_; }
   core::Vec3 driftingBias() const { return walk_ + markov_; }
   const core::Vec3& whiteSigma() const { return white_sigma_; }
+  double fullScale() const { return p_.full_scale; }
 
  private:
   TriadErrorParams p_;

@@ -31,6 +31,10 @@ struct PhoneRanges {
   static constexpr DrawRange kMagRate_hz{25.0, 50.0};
   static constexpr DrawRange kMagLag_s{0.020, 0.040};
   static constexpr DrawRange kAccelLag_s{0.0, 0.005};
+  // Accelerometer full scale, m/s², one of these, each as likely: phones' parts run at ±2 g
+  // (the Nexus 5 and the iPhone 4S of the shared recordings: a quarter of a run's samples
+  // clipped on one axis with the phone in the hand), ±4 g or ±8 g (the iPhone 5).
+  static constexpr double kAccelFullScale_m_s2[] = {2.0 * 9.80665, 4.0 * 9.80665, 8.0 * 9.80665};
 };
 
 // One phone: its triads' errors and its sensor timing.

@@ -81,6 +81,7 @@ struct DrawnTriad {  // what TriadSensor drew: y = D x + o + b(t) + n
   core::Mat3 distortion = core::Mat3::Identity();
   core::Vec3 offset = core::Vec3::Zero();
   core::Vec3 white_sigma = core::Vec3::Zero();
+  double full_scale = 0.0;  // |y_i| at most this; 0: no limit
 };
 
 struct SimResult {
