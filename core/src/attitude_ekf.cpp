@@ -84,15 +84,29 @@ void AttitudeEkf::predict(const Quat& increment, double dt_s, double gyro_noise_
 }
 
 Eigen::Vector2d AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2) {
-  const double f_down = -gravity_m_s2;  // f_n = (0, 0, -g)
-  if (general_) {
-    updateGravityGeneral(accel_m_s2, accel_noise_m_s2, f_down);
-    return Eigen::Vector2d::Zero();
-  }
-  return updateGravityTilt(accel_m_s2, accel_noise_m_s2, f_down);
+  return updateGravityWhitened(accel_m_s2, accel_noise_m_s2, gravity_m_s2, nullptr);
 }
 
-Eigen::Vector2d AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down) {
+Eigen::Vector2d AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2,
+                                           const Vec3& uncertain_direction, double extra_variance) {
+  if (!(extra_variance > 0.0)) return updateGravity(accel_m_s2, accel_noise_m_s2, gravity_m_s2);
+  const double beta = 1.0 - 1.0 / std::sqrt(1.0 + extra_variance / (accel_noise_m_s2 * accel_noise_m_s2));
+  const Mat3 whitening = Mat3::Identity() - beta * uncertain_direction * uncertain_direction.transpose();
+  return updateGravityWhitened(accel_m_s2, accel_noise_m_s2, gravity_m_s2, &whitening);
+}
+
+Eigen::Vector2d AttitudeEkf::updateGravityWhitened(const Vec3& accel_m_s2, double accel_noise_m_s2,
+                                                   double gravity_m_s2, const Mat3* whitening) {
+  const double f_down = -gravity_m_s2;  // f_n = (0, 0, -g)
+  if (general_) {
+    updateGravityGeneral(accel_m_s2, accel_noise_m_s2, f_down, whitening);
+    return Eigen::Vector2d::Zero();
+  }
+  return updateGravityTilt(accel_m_s2, accel_noise_m_s2, f_down, whitening);
+}
+
+Eigen::Vector2d AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down,
+                                               const Mat3* whitening) {
   // Eqs. 3.5-3.7 with P = G diag(A, heading) Gᵀ (A: 2×2 tilt block, G = earth-axis
   // directions of q). H G = (J, 0): gravity does not change when the body turns about down.
   // Then H P Hᵀ = J A Jᵀ, K = G₂ A Jᵀ S⁻¹, and by the push-through identity
@@ -101,7 +115,12 @@ Eigen::Vector2d AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double ac
   // The heading variance is left as it is, as the 4×4 update leaves it.
   const Mat34 H = gravityInBodyJacobian(q_, f_down);  // eq. 3.5
   const Mat43 G = earthAxisDirections(q_);
-  const Eigen::Matrix<double, 3, 2> J = H * G.leftCols<2>();
+  Eigen::Matrix<double, 3, 2> J = H * G.leftCols<2>();
+  Vec3 residual = accel_m_s2 - gravityInBody(q_, f_down);
+  if (whitening != nullptr) {
+    J = *whitening * J;
+    residual = *whitening * residual;
+  }
   const Eigen::Matrix2d W = J.transpose() * J;
   Eigen::Matrix2d N = W * tilt_;
   N.diagonal().array() += accel_noise_m_s2 * accel_noise_m_s2;
@@ -109,7 +128,7 @@ Eigen::Vector2d AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double ac
   Eigen::Matrix2d N_inverse;
   N_inverse << N(1, 1), -N(0, 1), -N(1, 0), N(0, 0);
   const Eigen::Matrix2d B = tilt_ * (inverse_det * N_inverse);
-  const Eigen::Vector2d turn = B * (J.transpose() * (accel_m_s2 - gravityInBody(q_, f_down)));  // eq. 3.7a
+  const Eigen::Vector2d turn = B * (J.transpose() * residual);  // eq. 3.7a
   q_ += G.leftCols<2>() * turn;
   const Eigen::Matrix2d A = tilt_ - B * (W * tilt_);  // eq. 3.7b
   const double xy = 0.5 * (A(0, 1) + A(1, 0));      // symmetric, as keepHeadingOutOfTilt keeps it
@@ -120,15 +139,21 @@ Eigen::Vector2d AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double ac
   return 2.0 * turn;
 }
 
-void AttitudeEkf::updateGravityGeneral(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down) {
-  const Mat34 H = gravityInBodyJacobian(q_, f_down);  // eq. 3.5
+void AttitudeEkf::updateGravityGeneral(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down,
+                                       const Mat3* whitening) {
+  Mat34 H = gravityInBodyJacobian(q_, f_down);  // eq. 3.5
+  Vec3 residual = accel_m_s2 - gravityInBody(q_, f_down);
+  if (whitening != nullptr) {
+    H = *whitening * H;
+    residual = *whitening * residual;
+  }
   // P is symmetric, so P Hᵀ = (H P)ᵀ: one product serves S, K and the update of P.
   const Mat34 HP = H * P_;
   Mat3 S = HP * H.transpose();
   S.diagonal().array() += accel_noise_m_s2 * accel_noise_m_s2;
   const Mat43 K = HP.transpose() * symmetricInverse(S);  // eq. 3.6
   const Vec4 q_prior = q_;  // P below belongs to this linearisation point
-  q_ += K * (accel_m_s2 - gravityInBody(q_, f_down));  // eq. 3.7a (EKF form 2.9a)
+  q_ += K * residual;  // eq. 3.7a (EKF form 2.9a)
   P_ -= K * HP;  // eq. 3.7b; kept symmetric by keepHeadingOutOfTilt below
   normalise();  // eq. 3.8
   keepHeadingOutOfTilt(q_prior);

@@ -36,6 +36,7 @@ Estimator::Estimator(const EstimatorParams& params)
       bias_(p_),
       disturbance_(p_.gravity_m_s2, p_.accel_disturbance_time_constant_s),
       accel_prefilter_(p_.accel_prefilter_time_constant_s),
+      clipped_share_(p_.accel_prefilter_time_constant_s),
       gravity_residual_(p_.accel_residual_time_constant_s, p_.accel_disturbance_time_constant_s),
       mag_prefilter_(p_.mag_prefilter_time_constant_s),
       motion_(p_),
@@ -74,6 +75,8 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       // next field sample sets the heading outright (then the observer's running mean).
       // The observer's correction sums restart so that no restore reaches across the hole.
       accel_prefilter_.restart();
+      clipped_share_.restart();
+      clipped_share_started_ = false;
       gravity_residual_.restart(p_.accel_residual_time_constant_s, p_.accel_disturbance_time_constant_s);
       mag_prefilter_.restart();
       mag_delay_.restartChain();  // the delay learned so far stays: it is the sensor's
@@ -150,6 +153,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   }
   out_.mag_lag_s = mag_lag_s;
   const Vec3 gravity_measurement = accel_prefilter_.update(increment, accel_now, dt_s);
+  const Vec3 clipped_share = trackClipping(s.accel_m_s2, increment, dt_s);
 
   // Henriksson §3.1 also goes back to a gyro-only background attitude whenever the level
   // steps up. headingd does not: that attitude has run on the gyro alone for 5-10 s, and
@@ -161,7 +165,15 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   motion_.update(disturbance_.update(s.accel_m_s2, dt_s));
   const double residual = gravity_residual_.update(increment, gravity_measurement, dt_s);
   out_.gravity_noise_m_s2 = gravityMeasurementNoise(p_.accel_noise_m_s2, p_.accel_residual_gain, residual);
-  const Eigen::Vector2d tilt_turn = ekf_.updateGravity(gravity_measurement, out_.gravity_noise_m_s2, p_.gravity_m_s2);
+  // A clipped reading is short of the body's specific force along its clipped axes, and the
+  // low-pass keeps that for its time constant: along that direction the measurement counts
+  // for less, by accel_clip_excess_m_s2 per unit of clipped share (estimator_params.hpp).
+  const double share = clipped_share.norm();
+  const double clip_sigma = p_.accel_clip_excess_m_s2 * share;
+  const Eigen::Vector2d tilt_turn =
+      share > 0.0 ? ekf_.updateGravity(gravity_measurement, out_.gravity_noise_m_s2, p_.gravity_m_s2,
+                                       clipped_share / share, clip_sigma * clip_sigma)
+                  : ekf_.updateGravity(gravity_measurement, out_.gravity_noise_m_s2, p_.gravity_m_s2);
   tilt_seconds_ += dt_s;
   // The turn measures the bias once the tilt has settled from its start (the first turns
   // correct the start, not a drift).
@@ -280,6 +292,19 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.heading_sigma_rad = heading_uncertainty_.sigmaRad();
 }
 
+Vec3 Estimator::trackClipping(const Vec3& accel_m_s2, const Quat& increment, double dt_s) {
+  if (p_.accel_clip_excess_m_s2 <= 0.0) return Vec3::Zero();
+  const Vec3 clipped = accel_clipping_.update(accel_m_s2, dt_s);
+  out_.accel_clipped = !clipped.isZero();
+  if (out_.accel_clipped) ++accel_clipped_;
+  // Until the first clipped reading the share is zero and not worth a rotation per sample.
+  if (out_.accel_clipped && !clipped_share_started_) {
+    clipped_share_.add(Vec3::Zero(), dt_s);  // the low-pass starts from no clipping
+    clipped_share_started_ = true;
+  }
+  return clipped_share_started_ ? clipped_share_.update(increment, clipped, dt_s) : Vec3::Zero();
+}
+
 EstimatorCounters Estimator::counters() const {
   EstimatorCounters c;
   c.samples = gate_.counters();
@@ -288,6 +313,7 @@ EstimatorCounters Estimator::counters() const {
   c.mag_disturbed = mag_disturbed_;
   c.mag_heading_restores = mag_heading_restores_;
   c.state_recoveries = state_recoveries_;
+  c.accel_clipped = accel_clipped_;
   return c;
 }
 

@@ -27,6 +27,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"gyro_noise_rad_s", &P::gyro_noise_rad_s, 1e-7, 1.0, "rad/s"},
       {"gyro_scale_noise", &P::gyro_scale_noise, 0.0, 1.0, "1"},
       {"accel_prefilter_time_constant_s", &P::accel_prefilter_time_constant_s, 0.0, 100.0, "s"},
+      {"accel_clip_excess_m_s2", &P::accel_clip_excess_m_s2, 0.0, 1000.0, "m/s^2"},
       {"gravity_m_s2", &P::gravity_m_s2, 9.7, 9.9, "m/s^2"},
       {"accel_disturbance_time_constant_s", &P::accel_disturbance_time_constant_s, 1e-3, 100.0, "s"},
       {"accel_noise_m_s2", &P::accel_noise_m_s2, 1e-4, 1e3, "m/s^2"},

@@ -121,6 +121,57 @@ TEST(AttitudeEkf, GravityUpdateNeverIncreasesTheCovariance) {
   }
 }
 
+TEST(AttitudeEkf, AMeasurementLessCertainAlongOneDirectionIsTheKalmanUpdateWithThatR) {
+  // R = σ² I + v u uᵀ (a clipped accelerometer's low-pass, less certain along its clipped
+  // axes): the whitened update must be the textbook one, q + P Hᵀ (H P Hᵀ + R)⁻¹ (a - h(q)),
+  // with the filter's own P. From the tilt form (after a first update) and from the start-up P.
+  Random rng(31);
+  for (int trial = 0; trial < 40; ++trial) {
+    AttitudeEkf ekf;
+    ekf.setAttitude(rng.unitQuat());
+    ekf.setCovariance(tangentCovariance(ekf.state(), rng.uniform(0.01, 0.1)));
+    if (trial % 2 == 0) ekf.updateGravity(gravityReading(ekf.attitude()) + rng.vector(-1.0, 1.0), 0.5, kG);
+    const Vec3 accel = gravityReading(ekf.attitude()) + rng.vector(-3.0, 3.0);
+    const Vec3 u = rng.unitVector();
+    const double sigma = rng.uniform(0.3, 3.0);
+    const double extra = std::pow(rng.uniform(0.1, 30.0), 2);
+
+    const Vec4 q = ekf.state();
+    const Mat4 P = ekf.covariance();
+    const Vec3 f_n(0.0, 0.0, -kG);
+    const Mat34 H = rotateEarthToBodyJacobian(q, f_n);
+    const Mat3 R = sigma * sigma * Mat3::Identity() + extra * u * u.transpose();
+    const Mat3 S = H * P * H.transpose() + R;
+    const Vec4 expected = (q + P * H.transpose() * S.inverse() * (accel - rotateEarthToBody(q, f_n))).normalized();
+
+    ekf.updateGravity(accel, sigma, kG, u, extra);
+    EXPECT_LT((ekf.state() - expected).norm(), 1e-9) << "trial " << trial;
+  }
+}
+
+TEST(AttitudeEkf, AMeasurementShortAlongItsUncertainDirectionBarelyTilts) {
+  // A low-pass 3 m/s² short along a sensor axis 30° off vertical (the accelerometer clipped
+  // there) pulls the tilt by degrees; told that direction is uncertain by 16 m/s², the update
+  // keeps to what the other two directions say, which is the truth.
+  const Quat truth = test::fromYawPitchRoll(0.7, 30.0 * kDeg, 0.0);
+  const Vec3 clipped_axis = Vec3::UnitX();
+  const Vec3 short_reading = gravityReading(truth) - 3.0 * clipped_axis;
+  const auto tilt_after = [&](double extra_variance) {
+    AttitudeEkf ekf;
+    ekf.setAttitude(truth);
+    ekf.setCovariance(tangentCovariance(ekf.state(), 0.05));
+    for (int i = 0; i < 300; ++i) {
+      ekf.predict(Vec3::Zero(), 0.01, 0.08);
+      ekf.updateGravity(short_reading, 0.5, kG, clipped_axis, extra_variance);
+    }
+    return test::angleBetween(downInBody(ekf.attitude()), downInBody(truth));
+  };
+  const double plain = tilt_after(0.0);
+  const double told = tilt_after(16.0 * 16.0);
+  EXPECT_GT(plain, 5.0 * kDeg);
+  EXPECT_LT(told, 0.1 * plain);
+}
+
 TEST(AttitudeEkf, RepeatedUpdatesAtRestConvergeToRollAndPitch) {
   const Quat truth = test::fromYawPitchRoll(2.0, 20.0 * kDeg, -35.0 * kDeg);
   AttitudeEkf ekf;

@@ -26,6 +26,12 @@ class AttitudeEkf {
   // Returns the turn the update gave the attitude about NED north and east (rad; zero
   // before the first update has put P in its tilt form, start-up only).
   Eigen::Vector2d updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2);
+  // The same with the measurement less certain along one direction (unit, sensor axes):
+  // R = σ² I + extra_variance · u uᵀ in eq. 3.6 instead of σ² I. Done by whitening: the residual and H
+  // are multiplied by I - β u uᵀ, β = 1 - 1/√(1 + extra/σ²), which makes R σ² I again. (A
+  // clipped accelerometer's low-pass is short along its clipped axes: estimator.cpp.)
+  Eigen::Vector2d updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2,
+                                const Vec3& uncertain_direction, double extra_variance);
 
   // Replaces the attitude (back-tracking of §3.1, heading corrections of ch. 4). The
   // covariance is kept: the replacement is a better estimate of the same state.
@@ -49,8 +55,12 @@ class AttitudeEkf {
 
  private:
   void normalise();
-  void updateGravityGeneral(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down);
-  Eigen::Vector2d updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down);
+  // whitening: I - β u uᵀ of the update above, or nullptr.
+  void updateGravityGeneral(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down, const Mat3* whitening);
+  Eigen::Vector2d updateGravityTilt(const Vec3& accel_m_s2, double accel_noise_m_s2, double f_down,
+                                    const Mat3* whitening);
+  Eigen::Vector2d updateGravityWhitened(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2,
+                                        const Mat3* whitening);
   void keepHeadingOutOfTilt(const Vec4& q_prior);
 
   Vec4 q_;

@@ -11,6 +11,7 @@
 //   while walking (body_up_axis.hpp) → heading definition (§3.3) for that axis.
 #include <cstdint>
 
+#include "headingd/core/accel_clipping.hpp"
 #include "headingd/core/accel_disturbance.hpp"
 #include "headingd/core/gravity_residual.hpp"
 #include "headingd/core/gyro_frame_low_pass.hpp"
@@ -49,6 +50,8 @@ struct EstimatorOutput {
   MotionLevel motion_level = MotionLevel::kStanding;  // activity (§3.1's levels), reported only
   double accel_disturbance = 0.0;  // d_k, (m/s²)²
   double gravity_noise_m_s2 = 0.0;  // σ of R_k in this sample's gravity update (gravity_residual.hpp)
+  // An axis of this sample read the accelerometer's learned limit (accel_clipping.hpp).
+  bool accel_clipped = false;
   Vec3 gyro_bias_rad_s = Vec3::Zero();
   // Added to the heading rate about NED down: the heading observer's integral term, the
   // vertical rate error the field has shown (rad/s; mag_rate_error_time_constant_s).
@@ -74,6 +77,7 @@ struct EstimatorCounters {
   std::uint64_t mag_disturbed = 0;       // samples with K = 0 for a disturbed field
   std::uint64_t mag_heading_restores = 0;  // disturbance onsets that restored ψ_g (eq. 4.4)
   std::uint64_t state_recoveries = 0;    // a non-finite state was replaced (never expected)
+  std::uint64_t accel_clipped = 0;       // samples with an axis at the accelerometer's learned limit
 };
 
 // Calls fn(name, value) for every counter, in a fixed order, with stable snake_case names:
@@ -95,6 +99,7 @@ void forEachCounter(const EstimatorCounters& c, Fn&& fn) {
   fn("mag_disturbed", c.mag_disturbed);
   fn("mag_heading_restores", c.mag_heading_restores);
   fn("state_recoveries", c.state_recoveries);
+  fn("accel_clipped", c.accel_clipped);
 }
 
 // A value: a copy carries on independently from the same state (its parts hold their own
@@ -129,6 +134,10 @@ class Estimator {
   // mag_rate_error_max_turn_rad_s).
   void correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate_rad_s);
   void restoreGyroHeading();
+  // The accelerometer's clipped axes this sample (accel_clipping.hpp) through the same
+  // gyro-frame low-pass as its readings: their share in the gravity measurement, per axis
+  // (signed), in the current sensor axes. Zero while clipping is not looked for.
+  Vec3 trackClipping(const Vec3& accel_m_s2, const Quat& increment, double dt_s);
   void publish(std::int64_t t_ns);
   // The heading uncertainty's step: the rate error the bias filter allows about the vertical.
   void predictHeadingUncertainty(double dt_s);
@@ -139,6 +148,12 @@ class Estimator {
   AttitudeEkf ekf_;
   AccelDisturbanceLevel disturbance_;
   GyroFrameLowPass accel_prefilter_;
+  AccelClipDetector accel_clipping_;
+  // The clipped axes (±1 per axis, accel_clipping.hpp) through the same low-pass as the
+  // accelerometer: the direction along which its output is short, and the share of clipped
+  // samples in it.
+  GyroFrameLowPass clipped_share_;
+  bool clipped_share_started_ = false;
   GravityResidual gravity_residual_;
   GyroFrameLowPass mag_prefilter_;
   double mag_sample_dt_s_ = 0.0;  // time since the last field sample (a slower magnetometer)
@@ -160,6 +175,7 @@ class Estimator {
   std::uint64_t mag_heading_restores_ = 0;
   double mag_disturbed_seconds_ = 0.0;
   std::uint64_t state_recoveries_ = 0;
+  std::uint64_t accel_clipped_ = 0;
 };
 
 // Attitude from one accelerometer (tilt) and, if given, magnetometer (heading) sample.

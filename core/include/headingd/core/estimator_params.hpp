@@ -72,6 +72,16 @@ struct EstimatorParams {
 
   // --- Accelerometer pre-filter (gyro_frame_low_pass.hpp); 0 = raw samples as in the thesis ---
   double accel_prefilter_time_constant_s = 2.0;
+  // A saturating accelerometer (accel_clipping.hpp learns where) reads short of the body's
+  // specific force along its clipped axes, and the pre-filter's output with it. The gravity
+  // update takes that direction (the clipped axes through the same low-pass) as this much less
+  // certain per unit of clipped share: R = σ² I + (this · share)² u uᵀ (0: clipping is not
+  // looked for). The iPhone 5 of the shared phone recordings reads to ±8 g: had it clipped at
+  // 2 g, its running samples beyond would have been 6.4-8.9 m/s² short on average; this is
+  // about twice that. Chosen on the shared running trials of the two phones that clip (iPhone
+  // 4S, Nexus 5: fitted inclination, hand / pocket) and the iPhone 5's clipped at 2 g:
+  // docs/side-by-side-phones-sim.md ("A clipping accelerometer") has the sweep.
+  double accel_clip_excess_m_s2 = 16.0;
 
   // --- Gravity measurement noise R_k (gravity_residual.hpp) ---
   double gravity_m_s2 = 9.81;
