@@ -29,6 +29,7 @@ Vec3 AccelClipDetector::update(const Vec3& accel_m_s2, double dt_s) {
   Vec3 clipped = Vec3::Zero();
   for (int axis = 0; axis < 3; ++axis) {
     const double reading = accel_m_s2(axis);
+    if (!std::isfinite(reading)) continue;  // the sample gate's to count, not a limit
     if (std::abs(reading - run_value_(axis)) <= kFlatTolerance * std::abs(reading)) {
       run_s_(axis) += dt_s;
     } else {
@@ -37,7 +38,7 @@ Vec3 AccelClipDetector::update(const Vec3& accel_m_s2, double dt_s) {
     }
     const bool negative = reading < 0.0;
     const double magnitude = std::abs(reading);
-    if (!(magnitude >= kLowestLimit_m_s2)) continue;  // the common case, and NaN
+    if (magnitude < kLowestLimit_m_s2) continue;  // the common case
     const int bin = static_cast<int>(std::log(magnitude / kLowestLimit_m_s2) / std::log(kBinRatio));
     if (bin < kBins) {
       counts_[slot(axis, negative)][bin] += 1.0;

@@ -104,6 +104,7 @@ TEST(AccelClipDetector, RestAndNonFiniteReadingsFlagNothing) {
   for (int k = 0; k < 3000; ++k) {
     EXPECT_TRUE(detector.update(Vec3(0.0, 0.0, -kG) + rng.vector(-0.05, 0.05), kDt).isZero());
     EXPECT_TRUE(detector.update(Vec3(nan, -nan, nan), kDt).isZero());
+    EXPECT_TRUE(detector.update(Vec3(inf, -inf, 1e308), kDt).isZero());
   }
   for (int axis = 0; axis < 3; ++axis) {
     EXPECT_EQ(detector.clipFrom(axis, false), inf);
