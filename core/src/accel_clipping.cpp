@@ -29,16 +29,20 @@ Vec3 AccelClipDetector::update(const Vec3& accel_m_s2, double dt_s) {
   Vec3 clipped = Vec3::Zero();
   for (int axis = 0; axis < 3; ++axis) {
     const double reading = accel_m_s2(axis);
-    if (!std::isfinite(reading)) continue;  // the sample gate's to count, not a limit
-    if (std::abs(reading - run_value_(axis)) <= kFlatTolerance * std::abs(reading)) {
+    const double magnitude = std::abs(reading);
+    // Below the lowest limit (the common case) there is nothing to count, and a flat run
+    // that counts starts at or above it. Non-finite readings are the sample gate's to count.
+    if (!(magnitude >= kLowestLimit_m_s2) || !std::isfinite(magnitude)) {
+      run_s_(axis) = -1.0;  // no run
+      continue;
+    }
+    if (run_s_(axis) >= 0.0 && std::abs(reading - run_value_(axis)) <= kFlatTolerance * magnitude) {
       run_s_(axis) += dt_s;
     } else {
       run_value_(axis) = reading;
       run_s_(axis) = 0.0;
     }
     const bool negative = reading < 0.0;
-    const double magnitude = std::abs(reading);
-    if (magnitude < kLowestLimit_m_s2) continue;  // the common case
     const int bin = static_cast<int>(std::log(magnitude / kLowestLimit_m_s2) / std::log(kBinRatio));
     if (bin < kBins) {
       counts_[slot(axis, negative)][bin] += 1.0;
