@@ -201,9 +201,16 @@ kill_and_expect_restart() {
   while IFS='=' read -r key value; do now[$key]=$value; done \
     < <(systemctl show -p MainPID -p NRestarts -p ActiveEnterTimestampMonotonic "$unit")
   took=$((now[ActiveEnterTimestampMonotonic] - t_kill))
-  journalctl -q -u "$unit" --after-cursor "$cursor" -o export --output-fields=MESSAGE >"$work/after-kill"
-  t_event=$(awk -v line="$journal_line" '/^__MONOTONIC_TIMESTAMP=/ { t = substr($0, 23) }
-    /^MESSAGE=/ && index($0, line) { print t; exit }' "$work/after-kill")
+  # journald stores PID 1's line about the unit asynchronously: under qemu it can be stored
+  # after the new main process is already active, so the journal is read until it has it.
+  journal_after_kill() {
+    journalctl -q --sync 2>/dev/null || true
+    journalctl -q -u "$unit" --after-cursor "$cursor" -o export --output-fields=MESSAGE >"$work/after-kill"
+    t_event=$(awk -v line="$journal_line" '/^__MONOTONIC_TIMESTAMP=/ { t = substr($0, 23) }
+      /^MESSAGE=/ && index($0, line) { print t; exit }' "$work/after-kill")
+    [[ -n "$t_event" ]]
+  }
+  wait_for 15 journal_after_kill >/dev/null || true
   echo "SIG$signal to PID $pid at $(us_to_s "$t_kill") s (uptime); '$journal_line' at +$(us_to_s $((${t_event:-0} - t_kill))) s;" \
     "new PID ${now[MainPID]} active (READY=1) at +$(us_to_s "$took") s (seen by polling at +$(ms_to_s "$ms") s)"
   if ((took <= limit_s * 1000000)); then
