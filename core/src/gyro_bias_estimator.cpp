@@ -33,6 +33,7 @@ GyroBiasEstimator::GyroBiasEstimator(const EstimatorParams& p)
       horizontal_rows_(p.accel_prefilter_time_constant_s),
       spread_{TurnSpread(tiltTimeConstantS(p)), TurnSpread(tiltTimeConstantS(p))} {
   P_ = initial_variance_ * Mat3::Identity();
+  before_last_block_.P = P_;
 }
 
 const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT,
@@ -41,8 +42,24 @@ const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_
   const double growth = p_.bias_walk_rad_s_per_sqrt_s * p_.bias_walk_rad_s_per_sqrt_s * dt_s;
   for (int i = 0; i < 3; ++i) {
     if (P_(i, i) < initial_variance_) P_(i, i) += growth;
+    // What the state was before the last block wanders alike, so that it can take its place.
+    if (before_last_block_.P(i, i) < initial_variance_) before_last_block_.P(i, i) += growth;
   }
-  if (!rest_.update(gyro_rad_s, accel_m_s2, mag_uT, dt_s)) return bias_;
+  switch (rest_.update(gyro_rad_s, accel_m_s2, mag_uT, dt_s)) {
+    case RestDetector::News::kNone:
+      return bias_;
+    case RestDetector::News::kNewBlock:
+      before_last_block_ = {bias_, P_, rest_seconds_, still_blocks_, previous_outlier_, has_previous_outlier_};
+      break;
+    case RestDetector::News::kLastBlockWithdrawn:
+      restoreBeforeLastBlock();
+      return bias_;
+    case RestDetector::News::kLastBlockRevised:
+      // Nothing else changed the estimate since: the sensor was at rest, where the in-motion
+      // update does not learn.
+      restoreBeforeLastBlock();
+      break;
+  }
   // A still block measures the bias: y = its mean rate less its measured turn, H = I, and W
   // its own covariance, but no less than N / T for a block of length T (N = τ² walk²: the
   // estimate follows a changing bias at rest with time constant τ at most).
@@ -84,6 +101,16 @@ const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_
   P_ = 0.5 * (P_ + P_.transpose());
   clampBias();
   return bias_;
+}
+
+void GyroBiasEstimator::restoreBeforeLastBlock() {
+  const StateBeforeBlock& before = before_last_block_;
+  bias_ = before.bias;
+  P_ = before.P;
+  rest_seconds_ = before.rest_seconds;
+  still_blocks_ = before.still_blocks;
+  previous_outlier_ = before.previous_outlier;
+  has_previous_outlier_ = before.has_previous_outlier;
 }
 
 GyroBiasEstimator::TurnSpread::TurnSpread(double correlation_time_s)

@@ -22,9 +22,12 @@ constexpr double kMinQuietShare = 0.5;
 // running means' first moments understate it (a hand's tremor at 1 τ: 0.017 against 0.042 rad/s
 // later, simulated hand-held, seed 2).
 constexpr double kQuietFromTimeConstants = 2.0;
-// The provisional block's course is kept for this many samples: the floor's 2 s warm-up at
-// 1 kHz (at higher rates its first part only).
-constexpr std::size_t kProvisionalCoursePoints = 2048;
+// A still block counts once the sensor has stayed steady for this many of the low-pass's time
+// constants after it (at most half a block; rest_detector.hpp says why).
+constexpr double kConfirmTimeConstants = 1.0;
+// A block's course is kept for this many samples: the floor's 2 s warm-up at 1 kHz (at higher
+// rates its first part only).
+constexpr std::size_t kCoursePoints = 2048;
 
 // [u]×: [u]× v = u × v.
 Mat3 skew(const Vec3& u) {
@@ -46,7 +49,8 @@ RestDetector::RestDetector(const EstimatorParams& p)
       accel_floor_(4.0 * p.rest_filter_time_constant_s),
       mag_floor_(4.0 * p.rest_filter_time_constant_s) {
   // Once, here: the estimator's loop does not allocate.
-  provisional_course_.reserve(kProvisionalCoursePoints);
+  current_.course.reserve(kCoursePoints);
+  pending_.course.reserve(kCoursePoints);
 }
 
 double RestDetector::SteadyVector::update(const Vec3& v, double dt_s) {
@@ -71,8 +75,8 @@ double RestDetector::SteadyVector::directionSigma(const NoiseFloor& floor, doubl
   return std::max(1e-5, rms * std::sqrt(dt_s / (2.0 * time_constant_s)) / norm);
 }
 
-bool RestDetector::measuredTurn(double dt_s, double block_s, const Vec3& accel_end, const Vec3& mag_end,
-                                Vec3* turn_rad, Mat3* covariance) const {
+bool RestDetector::measuredTurn(double dt_s, const Block& block, const BlockPoint& end, Vec3* turn_rad,
+                                Mat3* covariance) const {
   // A world-fixed unit vector seen from a sensor that turns by θ (sensor axes) moves by
   // Δu = u₀ × θ = [u₀]× θ. Gravity and the field each measure θ so, weighted by their
   // direction noise (the start and the end mean each contribute): in information form
@@ -86,7 +90,7 @@ bool RestDetector::measuredTurn(double dt_s, double block_s, const Vec3& accel_e
   // horizontal axes, and indoors, where the field is often disturbed, that is how the
   // vertical bias is learned; a slow steady turn about the vertical then counts as bias).
   const double tau = p_.rest_filter_time_constant_s;
-  const double prior_sigma = 0.5 * p_.rest_max_turn_rate_rad_s * block_s;
+  const double prior_sigma = 0.5 * p_.rest_max_turn_rate_rad_s * end.time_s;
   const double prior_variance = std::max(prior_sigma * prior_sigma, 1e-12);
   Mat3 measured_information = Mat3::Zero();
   Vec3 projected = Vec3::Zero();
@@ -97,10 +101,10 @@ bool RestDetector::measuredTurn(double dt_s, double block_s, const Vec3& accel_e
   Seen seen[2];
   int count = 0;
   const double accel_sigma = accel_.directionSigma(accel_floor_, dt_s, tau);
-  seen[count++] = {accel_.start_direction, accel_end, 2.0 * accel_sigma * accel_sigma};
-  if (mag_in_block_) {
+  seen[count++] = {block.accel_start, end.accel_direction, 2.0 * accel_sigma * accel_sigma};
+  if (block.with_mag) {
     const double mag_sigma = mag_.directionSigma(mag_floor_, dt_s, tau);
-    seen[count++] = {mag_.start_direction, mag_end, 2.0 * mag_sigma * mag_sigma};
+    seen[count++] = {block.mag_start, end.mag_direction, 2.0 * mag_sigma * mag_sigma};
   }
   for (int i = 0; i < count; ++i) {
     const Vec3& u = seen[i].start;
@@ -109,8 +113,8 @@ bool RestDetector::measuredTurn(double dt_s, double block_s, const Vec3& accel_e
   }
   // The turning hypothesis: posterior N(θ₁, P₁).
   Mat3 prior_information = Mat3::Identity() / prior_variance;
-  if (!mag_in_block_) {
-    const Vec3& g = accel_.start_direction;
+  if (!block.with_mag) {
+    const Vec3& g = block.accel_start;
     prior_information += g * g.transpose() / seen[0].variance;  // as well known as gravity's direction
   }
   const auto turning = (measured_information + prior_information).ldlt();
@@ -133,11 +137,11 @@ bool RestDetector::measuredTurn(double dt_s, double block_s, const Vec3& accel_e
   return true;
 }
 
-bool RestDetector::judgeBlock(double dt_s, double block_s, const Vec3& rotation, const Vec3& accel_end,
-                              const Vec3& mag_end) {
+bool RestDetector::judgeBlock(double dt_s, const Block& block, const BlockPoint& end) {
   Vec3 turn;
   Mat3 turn_covariance;
-  const bool still = measuredTurn(dt_s, block_s, accel_end, mag_end, &turn, &turn_covariance) &&
+  const double block_s = end.time_s;
+  const bool still = measuredTurn(dt_s, block, end, &turn, &turn_covariance) &&
                      turn.norm() <= p_.rest_max_turn_rate_rad_s * block_s;
   at_rest_ = still;
   if (still) {
@@ -145,33 +149,49 @@ bool RestDetector::judgeBlock(double dt_s, double block_s, const Vec3& rotation,
     // mean squared deviation.
     Mat3 covariance = (gyro_.deviation2 * dt_s / block_s) * Mat3::Identity();
     covariance += turn_covariance / (block_s * block_s);
-    block_ = {(rotation - turn) / block_s, block_s, covariance};
+    block_ = {(end.rotation - turn) / block_s, block_s, covariance};
   }
   return still;
 }
 
 bool RestDetector::judgeQuietPart(double dt_s, double bound) {
   // The last point before the RMS first rose above the bound.
+  const auto& course = current_.course;
   std::size_t quiet = 0;
-  while (quiet < provisional_course_.size() && provisional_course_[quiet].gyro_rms < bound) ++quiet;
+  while (quiet < course.size() && course[quiet].gyro_rms < bound) ++quiet;
   if (quiet == 0) return false;
-  const BlockPoint& end = provisional_course_[quiet - 1];
+  const BlockPoint& end = course[quiet - 1];
   if (end.time_s < kMinQuietShare * p_.rest_min_duration_s) return false;
-  return judgeBlock(dt_s, end.time_s, end.rotation, end.accel_direction, end.mag_direction);
+  return judgeBlock(dt_s, current_, end);
+}
+
+bool RestDetector::judgeBeforeMotion(double dt_s) {
+  const double end_s = pending_duration_s_ + pending_age_s_ - confirmWindowS();
+  const auto& course = pending_.course;
+  const auto after = std::upper_bound(course.begin(), course.end(), end_s,
+                                      [](double t, const BlockPoint& point) { return t < point.time_s; });
+  if (after == course.begin()) return false;
+  const BlockPoint& end = *std::prev(after);
+  if (end.time_s < kMinQuietShare * p_.rest_min_duration_s) return false;
+  return judgeBlock(dt_s, pending_, end);
+}
+
+double RestDetector::confirmWindowS() const {
+  return std::min(kConfirmTimeConstants * p_.rest_filter_time_constant_s, 0.5 * p_.rest_min_duration_s);
 }
 
 void RestDetector::startBlock(bool with_mag) {
   in_block_ = true;
-  provisional_course_.clear();
+  current_.course.clear();
+  current_.accel_start = accel_.direction();
+  current_.with_mag = with_mag;
+  current_.mag_start = with_mag ? mag_.direction() : Vec3::Zero();
   block_time_s_ = 0.0;
   block_rotation_.setZero();
-  accel_.markStart();
   block_field_gaps_s_ = 0.0;
-  mag_in_block_ = with_mag;
-  if (with_mag) mag_.markStart();
 }
 
-bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s) {
+RestDetector::News RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s) {
   const double gyro_rms = gyro_.update(gyro_rad_s, dt_s);
   const double accel_rms = accel_.update(accel_m_s2, dt_s);
   accel_floor_.update(accel_rms, dt_s);
@@ -188,7 +208,7 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
     block_field_gaps_s_ += dt_s;
     if (field_gap_s_ > kMaxFieldGapS || block_field_gaps_s_ > kMaxFieldGapShare * p_.rest_min_duration_s) {
       mag_ = SteadyVector(p_.rest_filter_time_constant_s);
-      mag_in_block_ = false;
+      current_.with_mag = false;
     }
   }
   gyro_floor_.update(gyro_rms, dt_s);
@@ -226,30 +246,44 @@ bool RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const 
   // ends here all the same).
   const bool quiet_part_still = provisional_failed && in_block_ && judgeQuietPart(dt_s, provisional_bound);
   if (!steady) {
+    // The last block, if it ended less than a confirmation window ago, counts only up to a
+    // window before this moment. (Not with a quiet part: no block ends before the floor is
+    // known, and the provisional test fails only when it becomes known.)
+    News news = quiet_part_still ? News::kNewBlock : News::kNone;
+    if (has_pending_) news = judgeBeforeMotion(dt_s) ? News::kLastBlockRevised : News::kLastBlockWithdrawn;
+    has_pending_ = false;
     steady_s_ = 0.0;
     // After a motion the low-passed means still hold it for a few time constants.
     settle_time_constants_ = kSettleTimeConstants;
     in_block_ = false;
     at_rest_ = false;
-    return quiet_part_still;
+    return news;
   }
   steady_s_ += dt_s;
-  if (steady_s_ < settle_time_constants_ * p_.rest_filter_time_constant_s) return false;
+  if (has_pending_) {
+    pending_age_s_ += dt_s;
+    if (pending_age_s_ >= confirmWindowS()) has_pending_ = false;  // it stands
+  }
+  if (steady_s_ < settle_time_constants_ * p_.rest_filter_time_constant_s) return News::kNone;
   if (!in_block_) startBlock(mag_uT != nullptr);
   block_time_s_ += dt_s;
   // The low-passed rate: its integral over the block is the turn the low-passed directions
   // below see (the filter is linear), so the two compare over the same stretch of time.
   block_rotation_ += gyro_.mean * dt_s;
-  if (!floor_known && provisional_course_.size() < kProvisionalCoursePoints) {
-    provisional_course_.push_back({block_time_s_, block_rotation_, accel_.direction(),
-                                   mag_in_block_ ? mag_.direction() : Vec3::Zero(), gyro_rms});
-  }
-  if (block_time_s_ < p_.rest_min_duration_s || !floor_known) return false;
+  const BlockPoint now{block_time_s_, block_rotation_, accel_.direction(),
+                       current_.with_mag ? mag_.direction() : Vec3::Zero(), gyro_rms};
+  if (current_.course.size() < kCoursePoints) current_.course.push_back(now);
+  if (block_time_s_ < p_.rest_min_duration_s || !floor_known) return News::kNone;
 
-  const bool still = judgeBlock(dt_s, block_time_s_, block_rotation_, accel_.direction(),
-                                mag_in_block_ ? mag_.direction() : Vec3::Zero());
+  const bool still = judgeBlock(dt_s, current_, now);
+  has_pending_ = still && confirmWindowS() > 0.0;
+  if (has_pending_) {
+    std::swap(pending_, current_);  // both keep their reserved courses
+    pending_duration_s_ = block_.duration_s;
+    pending_age_s_ = 0.0;
+  }
   startBlock(mag_uT != nullptr);  // the next block begins where this one ended
-  return still;
+  return still ? News::kNewBlock : News::kNone;
 }
 
 }  // namespace headingd::core

@@ -8,7 +8,9 @@
 //    joint covariance (NIS above χ²(3)'s 99 % point) counts with the spread it shows, not
 //    with its own covariance: a hand's slow drift can fool a block's turn measurement. A
 //    second such block that agrees with the first says the bias changed: then it is learned
-//    at once.
+//    at once. When a motion is found just after a block, the rest detector cuts the block
+//    back (or withdraws it): the estimate is then taken back to what it was before the block
+//    and the cut block counted in its place.
 //  - In motion the accelerometer says what the gyro got wrong about tilt: a bias error
 //    β = b - b̂ turns the predicted attitude by R β per second (R: sensor to NED), and the
 //    EKF's gravity update turns it back. Over the time the gravity filters average (their lag
@@ -118,6 +120,18 @@ class GyroBiasEstimator {
   // The last still block, when it was an outlier (its covariance: the W it was weighed with).
   RestBlock previous_outlier_;
   bool has_previous_outlier_ = false;
+  // The rest part of the state before the last still block, for when the rest detector
+  // revises or withdraws that block (a motion found just after it: rest_detector.hpp).
+  struct StateBeforeBlock {
+    Vec3 bias = Vec3::Zero();
+    Mat3 P = Mat3::Zero();
+    double rest_seconds = 0.0;
+    std::uint64_t still_blocks = 0;
+    RestBlock previous_outlier;
+    bool has_previous_outlier = false;
+  };
+  StateBeforeBlock before_last_block_;
+  void restoreBeforeLastBlock();
 };
 
 }  // namespace headingd::core

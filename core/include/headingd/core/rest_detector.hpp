@@ -40,7 +40,14 @@
 // and is taken as none: the block counts that part of its rate as bias (a person standing
 // sways about horizontal axes; a slow steady turn about the vertical is the limitation).
 // Whole blocks, so that the first moments of a motion, which no test sees at once, are thrown
-// away with the block they end; and after a motion the first block starts only once the
+// away with the block they end. And a block stands only once the sensor has stayed steady for
+// a moment after it (one low-pass time constant, at most half a block): a motion's start can
+// pass every test to the block's end (a slow start; a person setting off, whose acceleration
+// tilts the apparent gravity, which the block takes for a turn: 15 mrad/s of bias learned
+// wrong, simulated phone-running-circles consumer seed 6) and is found a few tenths of a second
+// later; the block, counted when it ended, is then cut back to what lay that moment before the
+// motion was found (withdrawn if that is less than half a block), and the bias estimate
+// redone from the cut block. After a motion the first block starts only once the
 // low-passes have settled from it (3 of their time constants of steadiness; at start-up they
 // begin as running means and need one).
 #include <limits>
@@ -66,21 +73,26 @@ class RestDetector {
  public:
   explicit RestDetector(const EstimatorParams& p);
 
-  // mag_uT: the field sample, or nullptr when there is none or it is disturbed. Returns true
-  // when a still block ended with this sample (block() then holds it).
-  bool update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s);
+  // What a sample tells about still blocks.
+  enum class News {
+    kNone,
+    kNewBlock,            // a still block ended with this sample: block() holds it
+    kLastBlockRevised,    // a motion was found just after the last block: block() holds its
+                          // part before the motion, which replaces it
+    kLastBlockWithdrawn,  // ... and too little of it lay before the motion: it does not count
+  };
+  // mag_uT: the field sample, or nullptr when there is none or it is disturbed.
+  News update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s);
   // At rest: the last block was still and the sensor has stayed steady since.
   bool atRest() const { return at_rest_; }
   const RestBlock& block() const { return block_; }
 
  private:
-  // One vector's low-passed mean, the mean squared deviation of the samples from it, and its
-  // direction when the current block began. Both low-passes begin as running means (weight
+  // One vector's low-passed mean and the mean squared deviation of the samples from it. Both low-passes begin as running means (weight
   // dt/t until t reaches the time constant), so the first samples do not weigh more than later ones.
   struct SteadyVector {
     explicit SteadyVector(double time_constant_s) : alpha(time_constant_s) {}
     double update(const Vec3& v, double dt_s);  // returns the RMS deviation
-    void markStart() { start_direction = mean.normalized(); }
     Vec3 direction() const { return mean.normalized(); }
     // Standard deviation of the mean's direction (rad) from the sensor's noise floor: white
     // noise σ through a first-order low-pass has σ √(dt / 2τ).
@@ -89,21 +101,40 @@ class RestDetector {
     double elapsed_s = 0.0;
     Vec3 mean = Vec3::Zero();
     double deviation2 = 0.0;
-    Vec3 start_direction = Vec3::Zero();
+  };
+
+  // A block's course, sample by sample: where it stands after time_s, what a cut judges.
+  struct BlockPoint {
+    double time_s;
+    Vec3 rotation;  // ∫ ω̄ dt since the block began
+    Vec3 accel_direction;
+    Vec3 mag_direction;  // zero without the field
+    double gyro_rms;
+  };
+  // A block: the directions its turn is measured from and its course (the first
+  // kCoursePoints samples: at 1 kHz and below, all of a 2 s block).
+  struct Block {
+    Vec3 accel_start = Vec3::Zero();
+    Vec3 mag_start = Vec3::Zero();
+    bool with_mag = false;  // the field was usable when the block began and since
+    std::vector<BlockPoint> course;
   };
 
   void startBlock(bool with_mag);
   // The block's turn from gravity (and the field), from their directions at its start to
-  // accel_end and mag_end, over block_s, and its covariance, or false if they do not fit one
-  // rotation.
-  bool measuredTurn(double dt_s, double block_s, const Vec3& accel_end, const Vec3& mag_end, Vec3* turn_rad,
-                    Mat3* covariance) const;
-  // The still block's bias from its integral and measured turn over block_s, or false when the
+  // `end`'s, and its covariance, or false if they do not fit one rotation.
+  bool measuredTurn(double dt_s, const Block& block, const BlockPoint& end, Vec3* turn_rad, Mat3* covariance) const;
+  // The still block's bias from its integral and measured turn up to `end`, or false when the
   // turn is not one rotation or too large. at_rest_ follows.
-  bool judgeBlock(double dt_s, double block_s, const Vec3& rotation, const Vec3& accel_end, const Vec3& mag_end);
+  bool judgeBlock(double dt_s, const Block& block, const BlockPoint& end);
   // Of the provisional stretch's block (the gyro floor unknown when it began), the part before
   // its RMS rose above `bound`: its bias, if that part is long enough and still.
   bool judgeQuietPart(double dt_s, double bound);
+  // Of the last block, when a motion was found within the confirmation window after it, the
+  // part that ended a window before the motion was found: its bias, if long enough and still.
+  bool judgeBeforeMotion(double dt_s);
+  // How long the sensor must stay steady after a still block for the block to stand.
+  double confirmWindowS() const;
 
   EstimatorParams p_;  // a copy: the owner may be copied or moved (gyro_bias_estimator.hpp)
   SteadyVector gyro_;
@@ -116,25 +147,21 @@ class RestDetector {
   double steady_s_ = 0.0;  // how long the steady tests have held
   double provisional_gyro_rms_ = 0.0;  // largest gyro RMS of the stretch before the floor was known
   double provisional_min_rms_ = std::numeric_limits<double>::infinity();  // and its smallest, once settled
-  // The block's course while the floor is unknown, sample by sample: what judgeQuietPart cuts.
-  struct BlockPoint {
-    double time_s;
-    Vec3 rotation;
-    Vec3 accel_direction;
-    Vec3 mag_direction;
-    double gyro_rms;
-  };
-  std::vector<BlockPoint> provisional_course_;
   // Time constants of steadiness before a block may start: one at start-up (the running means
   // have then seen a time constant's samples), three after a motion (they still hold it).
   double settle_time_constants_ = 1.0;
   bool in_block_ = false;
-  bool mag_in_block_ = false;  // the field was usable when the block began and since
   double field_gap_s_ = 0.0;         // how long the field has been missing, at a stretch
   double block_field_gaps_s_ = 0.0;  // and in all, this block
   double block_time_s_ = 0.0;
   Vec3 block_rotation_ = Vec3::Zero();  // ∫ ω̄ dt over the block
+  Block current_;
   RestBlock block_;
+  // The last still block while the steadiness after it is not yet a confirmation window long.
+  bool has_pending_ = false;
+  Block pending_;
+  double pending_duration_s_ = 0.0;
+  double pending_age_s_ = 0.0;
 };
 
 }  // namespace headingd::core
