@@ -18,6 +18,12 @@ constexpr double kMaxFieldGapShare = 0.2;
 // A provisional block cut back to its quiet part counts if that part is at least this share of
 // rest_min_duration_s.
 constexpr double kMinQuietShare = 0.5;
+// A block that a motion ends counts up to a confirmation window before the motion was found if
+// that part is at least this many of the low-pass's time constants long (with the default
+// 0.5 s: 0.25 s). Shorter than a block: the opening rests of 1-1.5 s (phone-calling,
+// -pocket, -swinging) never gave a whole one, and their bias was then learned in motion only,
+// slowly; the part's covariance says how little a short one knows.
+constexpr double kMinPartTimeConstants = 0.5;
 // The stretch's quietest RMS is taken from this many of the low-pass's time constants on: the
 // running means' first moments understate it (a hand's tremor at 1 τ: 0.017 against 0.042 rad/s
 // later, simulated hand-held, seed 2).
@@ -63,7 +69,8 @@ double RestDetector::SteadyVector::update(const Vec3& v, double dt_s) {
   return std::sqrt(deviation2);
 }
 
-double RestDetector::SteadyVector::directionSigma(const NoiseFloor& floor, double dt_s, double time_constant_s) const {
+double RestDetector::SteadyVector::directionSigma(const NoiseFloor& floor, double rms_at_end, double dt_s,
+                                                  double time_constant_s) const {
   const double norm = mean.norm();
   if (norm <= 0.0) return 1.0;
   // The sensor's own noise: the quietest RMS deviation of the last minute (a turn or a
@@ -71,7 +78,7 @@ double RestDetector::SteadyVector::directionSigma(const NoiseFloor& floor, doubl
   // deviation until the floor is known. A floor of 1e-5 rad keeps the weights finite for a
   // noiseless (simulated) sensor.
   const double known_floor = floor.value();
-  const double rms = std::isfinite(known_floor) ? known_floor : std::sqrt(deviation2);
+  const double rms = std::isfinite(known_floor) ? known_floor : rms_at_end;
   return std::max(1e-5, rms * std::sqrt(dt_s / (2.0 * time_constant_s)) / norm);
 }
 
@@ -100,10 +107,10 @@ bool RestDetector::measuredTurn(double dt_s, const Block& block, const BlockPoin
   };
   Seen seen[2];
   int count = 0;
-  const double accel_sigma = accel_.directionSigma(accel_floor_, dt_s, tau);
+  const double accel_sigma = accel_.directionSigma(accel_floor_, end.accel_rms, dt_s, tau);
   seen[count++] = {block.accel_start, end.accel_direction, 2.0 * accel_sigma * accel_sigma};
   if (block.with_mag) {
-    const double mag_sigma = mag_.directionSigma(mag_floor_, dt_s, tau);
+    const double mag_sigma = mag_.directionSigma(mag_floor_, end.mag_rms, dt_s, tau);
     seen[count++] = {block.mag_start, end.mag_direction, 2.0 * mag_sigma * mag_sigma};
   }
   for (int i = 0; i < count; ++i) {
@@ -147,7 +154,8 @@ bool RestDetector::judgeBlock(double dt_s, const Block& block, const BlockPoint&
   if (still) {
     // ∫ω̄ dt over T carries the gyro's white noise as ∫ω dt does: σ² dt T, σ² the samples'
     // mean squared deviation.
-    Mat3 covariance = (gyro_.deviation2 * dt_s / block_s) * Mat3::Identity();
+    // (The deviation where the part judged ends: a motion found later has raised it since.)
+    Mat3 covariance = (end.gyro_rms * end.gyro_rms * dt_s / block_s) * Mat3::Identity();
     covariance += turn_covariance / (block_s * block_s);
     block_ = {(end.rotation - turn) / block_s, block_s, covariance};
   }
@@ -165,15 +173,17 @@ bool RestDetector::judgeQuietPart(double dt_s, double bound) {
   return judgeBlock(dt_s, current_, end);
 }
 
-bool RestDetector::judgeBeforeMotion(double dt_s) {
-  const double end_s = pending_duration_s_ + pending_age_s_ - confirmWindowS();
-  const auto& course = pending_.course;
+bool RestDetector::judgePart(double dt_s, const Block& block, double end_s, double min_s, double gyro_bound) {
+  const auto& course = block.course;
   const auto after = std::upper_bound(course.begin(), course.end(), end_s,
                                       [](double t, const BlockPoint& point) { return t < point.time_s; });
   if (after == course.begin()) return false;
   const BlockPoint& end = *std::prev(after);
-  if (end.time_s < kMinQuietShare * p_.rest_min_duration_s) return false;
-  return judgeBlock(dt_s, pending_, end);
+  if (end.time_s < min_s) return false;
+  if (std::any_of(course.begin(), after, [gyro_bound](const BlockPoint& point) { return point.gyro_rms >= gyro_bound; })) {
+    return false;
+  }
+  return judgeBlock(dt_s, block, end);
 }
 
 double RestDetector::confirmWindowS() const {
@@ -250,7 +260,19 @@ RestDetector::News RestDetector::update(const Vec3& gyro_rad_s, const Vec3& acce
     // window before this moment. (Not with a quiet part: no block ends before the floor is
     // known, and the provisional test fails only when it becomes known.)
     News news = quiet_part_still ? News::kNewBlock : News::kNone;
-    if (has_pending_) news = judgeBeforeMotion(dt_s) ? News::kLastBlockRevised : News::kLastBlockWithdrawn;
+    if (has_pending_) {
+      // (It passed its tests whole: its part needs no gyro bound, and is at least half a block.)
+      const bool still = judgePart(dt_s, pending_, pending_duration_s_ + pending_age_s_ - confirmWindowS(),
+                                   kMinQuietShare * p_.rest_min_duration_s, std::numeric_limits<double>::infinity());
+      news = still ? News::kLastBlockRevised : News::kLastBlockWithdrawn;
+    }
+    // A block in progress counts up to a window before this moment, if that part is long
+    // enough and its gyro stayed quiet (the opening rests of 1-1.5 s, shorter than a block).
+    if (news == News::kNone && !has_pending_ && in_block_ &&
+        judgePart(dt_s, current_, block_time_s_ - confirmWindowS(), kMinPartTimeConstants * p_.rest_filter_time_constant_s,
+                  floor_known ? gyro_bound : provisional_bound)) {
+      news = News::kNewBlock;
+    }
     has_pending_ = false;
     steady_s_ = 0.0;
     // After a motion the low-passed means still hold it for a few time constants.
@@ -270,8 +292,13 @@ RestDetector::News RestDetector::update(const Vec3& gyro_rad_s, const Vec3& acce
   // The low-passed rate: its integral over the block is the turn the low-passed directions
   // below see (the filter is linear), so the two compare over the same stretch of time.
   block_rotation_ += gyro_.mean * dt_s;
-  const BlockPoint now{block_time_s_, block_rotation_, accel_.direction(),
-                       current_.with_mag ? mag_.direction() : Vec3::Zero(), gyro_rms};
+  const BlockPoint now{block_time_s_,
+                       block_rotation_,
+                       accel_.direction(),
+                       current_.with_mag ? mag_.direction() : Vec3::Zero(),
+                       gyro_rms,
+                       accel_rms,
+                       current_.with_mag ? std::sqrt(mag_.deviation2) : 0.0};
   if (current_.course.size() < kCoursePoints) current_.course.push_back(now);
   if (block_time_s_ < p_.rest_min_duration_s || !floor_known) return News::kNone;
 

@@ -136,6 +136,27 @@ TEST(GyroBiasEstimator, APersonSettingOffAsABlockEndsDoesNotTeachItTheirAccelera
   EXPECT_LT(cut_error, 3.0 * est.sigma().norm());
 }
 
+TEST(GyroBiasEstimator, AnOpeningRestShorterThanABlockGivesTheBiasOfItsStillPart) {
+  // Still for 1.4 s (a block needs 0.5 s of settling and 1.5 s), then the phone is raised to
+  // the ear: the block in progress counts up to a confirmation window (0.5 s) before the
+  // motion was found, 0.5 s to about 0.9 s (simulated phone-calling, mems, seeds 2 and 5:
+  // rests of 1.1 and 1.35 s, whose bias was before learned in motion only, over a minute).
+  const EstimatorParams p;
+  GyroBiasEstimator est(p);
+  StillSensor s{test::fromYawPitchRoll(-0.7, 0.05, 0.1)};
+  s.bias = Vec3(0.0096, 0.0155, 0.0128);
+  s.gyro_noise = 0.0026;
+  run(est, s, 1.4);
+  EXPECT_EQ(est.stillBlocks(), 0u);
+  s.rate_rad_s = Vec3(1.5, -0.8, 0.4);
+  run(est, s, 0.5);
+  EXPECT_FALSE(est.atRest());
+  EXPECT_EQ(est.stillBlocks(), 1u);
+  EXPECT_LT(est.restSeconds(), 0.5);
+  expectBias(est, s.bias, 1.5e-3);
+  for (int axis = 0; axis < 3; ++axis) EXPECT_LT(std::abs(est.bias()(axis) - s.bias(axis)), 3.0 * est.sigma()(axis));
+}
+
 TEST(GyroBiasEstimator, BiasWithinTheClampIsLearnedFromColdStart) {
   // 0.05 rad/s (2.9°/s, common for uncalibrated MEMS) is far above the rest thresholds and
   // within bias_max_rad_s (0.1).
@@ -153,8 +174,11 @@ TEST(GyroBiasEstimator, AfterAMotionTheLowPassesSettleForThreeTimeConstants) {
   GyroBiasEstimator est(p);
   StillSensor s{Quat::Identity()};
   run(est, s, 3.0);
-  const auto blocks = est.stillBlocks();
+  const auto blocks_before = est.stillBlocks();
   est.update(Vec3(2.0, 0.0, 0.0), Vec3(0.0, 5.0, -kG), nullptr, kDt);  // a knock
+  // It ends the block in progress (from 2.0 s), which counts up to a window (0.5 s) before it.
+  const auto blocks = est.stillBlocks();
+  EXPECT_EQ(blocks, blocks_before + 1);
   // Its deviation keeps the gyro unsteady for a while, then 1.5 s of settling and a block.
   run(est, s, 2.9);
   EXPECT_EQ(est.stillBlocks(), blocks);

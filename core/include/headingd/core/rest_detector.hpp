@@ -39,15 +39,15 @@
 // the true rest then fails it. Without a usable field a turn about the vertical is not seen
 // and is taken as none: the block counts that part of its rate as bias (a person standing
 // sways about horizontal axes; a slow steady turn about the vertical is the limitation).
-// Whole blocks, so that the first moments of a motion, which no test sees at once, are thrown
-// away with the block they end. And a block stands only once the sensor has stayed steady for
-// a moment after it (one low-pass time constant, at most half a block): a motion's start can
-// pass every test to the block's end (a slow start; a person setting off, whose acceleration
-// tilts the apparent gravity, which the block takes for a turn: 15 mrad/s of bias learned
-// wrong, simulated phone-running-circles consumer seed 6) and is found a few tenths of a second
-// later; the block, counted when it ended, is then cut back to what lay that moment before the
-// motion was found (withdrawn if that is less than half a block), and the bias estimate
-// redone from the cut block. After a motion the first block starts only once the
+// The first moments of a motion pass every test (a slow start; a person setting off, whose
+// acceleration tilts the apparent gravity, which a block takes for a turn: 15 mrad/s of bias
+// learned wrong, simulated phone-running-circles consumer seed 6) and are found a few tenths of
+// a second later. So what lay within a confirmation window (one low-pass time constant, at
+// most half a block) before a motion was found does not count: a block in progress then counts
+// up to that moment if that part is at least half a time constant long and its gyro stayed
+// quiet (an opening rest of 1-1.5 s gives no whole block), and a block that ended less than a
+// window before is cut back to it (withdrawn if that part is not still); the bias estimate is
+// then redone from the cut block. After a motion the first block starts only once the
 // low-passes have settled from it (3 of their time constants of steadiness; at start-up they
 // begin as running means and need one).
 #include <limits>
@@ -96,7 +96,8 @@ class RestDetector {
     Vec3 direction() const { return mean.normalized(); }
     // Standard deviation of the mean's direction (rad) from the sensor's noise floor: white
     // noise σ through a first-order low-pass has σ √(dt / 2τ).
-    double directionSigma(const NoiseFloor& floor, double dt_s, double time_constant_s) const;
+    // rms_at_end: the deviation where the block judged ends, while the floor is not known.
+    double directionSigma(const NoiseFloor& floor, double rms_at_end, double dt_s, double time_constant_s) const;
     LowPassAlpha alpha;
     double elapsed_s = 0.0;
     Vec3 mean = Vec3::Zero();
@@ -109,7 +110,9 @@ class RestDetector {
     Vec3 rotation;  // ∫ ω̄ dt since the block began
     Vec3 accel_direction;
     Vec3 mag_direction;  // zero without the field
-    double gyro_rms;
+    double gyro_rms;  // RMS deviations of the three vectors there
+    double accel_rms;
+    double mag_rms;  // zero without the field
   };
   // A block: the directions its turn is measured from and its course (the first
   // kCoursePoints samples: at 1 kHz and below, all of a 2 s block).
@@ -130,9 +133,10 @@ class RestDetector {
   // Of the provisional stretch's block (the gyro floor unknown when it began), the part before
   // its RMS rose above `bound`: its bias, if that part is long enough and still.
   bool judgeQuietPart(double dt_s, double bound);
-  // Of the last block, when a motion was found within the confirmation window after it, the
-  // part that ended a window before the motion was found: its bias, if long enough and still.
-  bool judgeBeforeMotion(double dt_s);
+  // Of `block`, the part that ended at end_s (block time; when a motion was found: a
+  // confirmation window before): its bias, if that part is at least min_s long, its gyro's
+  // RMS stayed below gyro_bound all through, and it is still.
+  bool judgePart(double dt_s, const Block& block, double end_s, double min_s, double gyro_bound);
   // How long the sensor must stay steady after a still block for the block to stand.
   double confirmWindowS() const;
 
