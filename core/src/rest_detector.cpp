@@ -267,11 +267,19 @@ RestDetector::News RestDetector::update(const Vec3& gyro_rad_s, const Vec3& acce
       news = still ? News::kLastBlockRevised : News::kLastBlockWithdrawn;
     }
     // A block in progress counts up to a window before this moment, if that part is long
-    // enough and its gyro stayed quiet (the opening rests of 1-1.5 s, shorter than a block).
-    if (news == News::kNone && !has_pending_ && in_block_ &&
-        judgePart(dt_s, current_, block_time_s_ - confirmWindowS(), kMinPartTimeConstants * p_.rest_filter_time_constant_s,
-                  floor_known ? gyro_bound : provisional_bound)) {
-      news = News::kNewBlock;
+    // enough and its gyro stayed quiet (the opening rests of 1-1.5 s, shorter than a block):
+    // below the bound, or while the floor is not known yet, below 2.5 times the quietest RMS
+    // of the stretch and of the block (the bound's minimum then is a fixed one, which a
+    // phone's gyro at 100 Hz does not meet: 0.007 rad/s per sample and axis).
+    if (news == News::kNone && !has_pending_ && in_block_) {
+      double part_bound = gyro_bound;
+      if (!floor_known) {
+        double quietest = provisional_min_rms_;
+        for (const BlockPoint& point : current_.course) quietest = std::min(quietest, point.gyro_rms);
+        part_bound = std::clamp(2.5 * quietest, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s);
+      }
+      const double min_s = kMinPartTimeConstants * p_.rest_filter_time_constant_s;
+      if (judgePart(dt_s, current_, block_time_s_ - confirmWindowS(), min_s, part_bound)) news = News::kNewBlock;
     }
     has_pending_ = false;
     steady_s_ = 0.0;
