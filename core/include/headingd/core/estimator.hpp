@@ -26,6 +26,7 @@
 #include "headingd/core/mag_delay_estimator.hpp"
 #include "headingd/core/mag_disturbance.hpp"
 #include "headingd/core/sample_gate.hpp"
+#include "headingd/core/turn_blended_low_pass.hpp"
 #include "headingd/core/vertical_rate_error.hpp"
 
 namespace headingd::core {
@@ -135,9 +136,10 @@ class Estimator {
   void correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate_rad_s);
   void restoreGyroHeading();
   // The accelerometer's clipped axes this sample (accel_clipping.hpp) through the same
-  // gyro-frame low-pass as its readings: their share in the gravity measurement, per axis
-  // (signed), in the current sensor axes. Zero while clipping is not looked for.
-  Vec3 trackClipping(const Vec3& accel_m_s2, const Quat& increment, double dt_s);
+  // gyro-frame low-pass as its readings (turning: its blend weight, SteadyTurnWeight): their
+  // share in the gravity measurement, per axis (signed), in the current sensor axes. Zero
+  // while clipping is not looked for.
+  Vec3 trackClipping(const Vec3& accel_m_s2, const Quat& increment, double dt_s, double turning);
   void publish(std::int64_t t_ns);
   // The heading uncertainty's step: the rate error the bias filter allows about the vertical.
   void predictHeadingUncertainty(double dt_s);
@@ -147,13 +149,14 @@ class Estimator {
   GyroBiasEstimator bias_;
   AttitudeEkf ekf_;
   AccelDisturbanceLevel disturbance_;
-  GyroFrameLowPass accel_prefilter_;
+  TurnBlendedLowPass accel_prefilter_;
   AccelClipDetector accel_clipping_;
   // The clipped axes (±1 per axis, accel_clipping.hpp) through the same low-pass as the
   // accelerometer: the direction along which its output is short, and the share of clipped
   // samples in it.
-  GyroFrameLowPass clipped_share_;
+  TurnBlendedLowPass clipped_share_;
   bool clipped_share_started_ = false;
+  SteadyTurnWeight steady_turn_;  // how far into a bend: the two low-passes' blend
   GravityResidual gravity_residual_;
   GyroFrameLowPass mag_prefilter_;
   double mag_sample_dt_s_ = 0.0;  // time since the last field sample (a slower magnetometer)

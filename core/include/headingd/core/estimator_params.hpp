@@ -72,6 +72,22 @@ struct EstimatorParams {
 
   // --- Accelerometer pre-filter (gyro_frame_low_pass.hpp); 0 = raw samples as in the thesis ---
   double accel_prefilter_time_constant_s = 2.0;
+  // While the body walks or runs round a bend the pre-filter averages longer, against the
+  // bend's centripetal acceleration (turn_blended_low_pass.hpp): its output moves to a
+  // low-pass of accel_prefilter_turning_time_constant_s (0: never) as the rate about the
+  // vertical, low-passed over the time constant above, grows to
+  // accel_prefilter_full_turn_rate_rad_s, and back as the body's whole rate, low-passed alike,
+  // grows from accel_prefilter_turning_max_rate_rad_s to twice it (the gyro frame's errors
+  // grow with the rotation, and no one runs round a bend at 7 rad/s).
+  // Chosen on the shared phone recordings, BROAD and the simulator's 84 classes for the worst
+  // case (docs/side-by-side.md, "Round a bend"): 4 / 6 / 8 s take the worst plain inclination
+  // of the phones' runs from 3.40° to 2.52 / 2.20 / 2.27° and cost the simulator's consumer
+  // hand-held motion 0.05 / 0.10 / 0.14° of total error (still 0.7 times VQF's); 0.3 / 0.5 /
+  // 1 rad/s move those by up to 0.3°; at 5 rad/s instead of 3.5 BROAD's fast hand-held
+  // rotations come in (1.82 -> 1.92° total).
+  double accel_prefilter_turning_time_constant_s = 6.0;
+  double accel_prefilter_full_turn_rate_rad_s = 0.5;
+  double accel_prefilter_turning_max_rate_rad_s = 3.5;
   // A saturating accelerometer (accel_clipping.hpp learns where) reads short of the body's
   // specific force along its clipped axes, and the pre-filter's output with it. The gravity
   // update takes that direction (the clipped axes through the same low-pass) as this much less
