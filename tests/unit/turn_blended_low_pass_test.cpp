@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "headingd/core/gyro_frame_low_pass.hpp"
+#include "headingd/core/low_pass.hpp"
 #include "headingd/core/turn_blended_low_pass.hpp"
 #include "test_support.hpp"
 
@@ -127,6 +128,31 @@ TEST(TurnBlendedLowPass, WithoutTheLongTimeConstantItIsTheGyroFrameLowPass) {
   TurnBlendedLowPass off(0.0, 6.0);  // τ₀ = 0: the raw sample, whatever the weight
   const Vec3 a(1.0, -2.0, -9.0);
   EXPECT_EQ(off.update(Quat::Identity(), a, kDt, 1.0), a);
+}
+
+TEST(GyroFrameLowPass, ARunningMeanStartDoesNotCarryItsFirstSample) {
+  // A start made in motion (the first sample 10 m/s² off), then 2 s of gravity: started from
+  // its first sample a 6 s low-pass still carries exp(-2/6) of the error; started as the
+  // running mean, 1/200 of it, and once the running mean is the faster of the two it is the
+  // plain low-pass again.
+  GyroFrameLowPass first(6.0);
+  GyroFrameLowPass mean(6.0, GyroFrameStart::kRunningMean);
+  const Vec3 off(0.0, 0.0, -kG - 10.0), gravity(0.0, 0.0, -kG);
+  Vec3 y_first = first.update(Vec3::Zero(), off, kDt);
+  Vec3 y_mean = mean.update(Vec3::Zero(), off, kDt);
+  EXPECT_EQ(y_first, off);
+  EXPECT_EQ(y_mean, off);
+  for (int i = 1; i < 200; ++i) {
+    y_first = first.update(Vec3::Zero(), gravity, kDt);
+    y_mean = mean.update(Vec3::Zero(), gravity, kDt);
+  }
+  EXPECT_NEAR((y_first - gravity).norm(), 10.0 * std::pow(lowPassAlpha(kDt, 6.0), 199), 1e-9);
+  EXPECT_NEAR((y_mean - gravity).norm(), 10.0 / 200.0, 1e-9);
+  // Once the running mean is the slower of the two (after τ), it is the plain low-pass.
+  for (int i = 0; i < 1000; ++i) y_mean = mean.update(Vec3::Zero(), gravity, kDt);
+  const Vec3 step(1.0, 0.0, -kG);
+  const double alpha = lowPassAlpha(kDt, 6.0);
+  EXPECT_LT((mean.update(Vec3::Zero(), step, kDt) - (alpha * y_mean + (1.0 - alpha) * step)).norm(), 1e-12);
 }
 
 TEST(TurnBlendedLowPass, RestartForgetsTheHistory) {

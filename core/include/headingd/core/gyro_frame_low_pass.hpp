@@ -25,10 +25,16 @@
 
 namespace headingd::core {
 
+// How the filter starts: from its first sample (which then weighs exp(-t/τ) in the output),
+// or as the running mean of the samples so far until that is the slower of the two (a long
+// time constant would otherwise carry a start made in motion for many seconds).
+enum class GyroFrameStart { kFirstSample, kRunningMean };
+
 class GyroFrameLowPass {
  public:
   // time_constant_s = 0 turns the filter off: the raw sample goes through (the thesis).
-  explicit GyroFrameLowPass(double time_constant_s) : time_constant_s_(time_constant_s), filtered_(time_constant_s) {}
+  explicit GyroFrameLowPass(double time_constant_s, GyroFrameStart start = GyroFrameStart::kFirstSample)
+      : time_constant_s_(time_constant_s), start_(start), filtered_(time_constant_s) {}
 
   // Returns the filtered vector in the current body axes.
   Vec3 update(const Vec3& gyro_rad_s, const Vec3& body_vector, double dt_s) {
@@ -49,7 +55,9 @@ class GyroFrameLowPass {
 
  private:
   double time_constant_s_;
+  GyroFrameStart start_;
   LowPass<Vec3> filtered_;  // in the current body axes
+  double seconds_ = 0.0;    // of samples taken since the start (kRunningMean)
 };
 
 }  // namespace headingd::core

@@ -80,7 +80,8 @@ class SteadyTurnWeight {
 class TurnBlendedLowPass {
  public:
   TurnBlendedLowPass(double time_constant_s, double turning_time_constant_s)
-      : short_(time_constant_s), long_(time_constant_s > 0.0 ? turning_time_constant_s : 0.0),
+      : short_(time_constant_s),
+        long_(time_constant_s > 0.0 ? turning_time_constant_s : 0.0, GyroFrameStart::kRunningMean),
         blended_(time_constant_s > 0.0 && turning_time_constant_s > 0.0) {}
 
   // As GyroFrameLowPass: the frame follows every gyro increment; add() takes a sample and
