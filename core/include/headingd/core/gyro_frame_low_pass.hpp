@@ -58,6 +58,7 @@ class GyroFrameLowPass {
   GyroFrameStart start_;
   LowPass<Vec3> filtered_;  // in the current body axes
   double seconds_ = 0.0;    // of samples taken since the start (kRunningMean)
+  bool handed_over_ = false;  // the running mean has given way to the low-pass (kRunningMean)
 };
 
 }  // namespace headingd::core
