@@ -8,6 +8,19 @@
 namespace headingd::core {
 namespace {
 
+// The accelerometer's delay is regressed over chains at least this long: every row is a
+// fresh sample, and over one row a noisy gyro's change is mostly noise, which pulls the
+// estimate towards zero. Simulated slow rotation, accelerometer 30 ms late (35 ms with the
+// interval mean), 3 seeds of phone / consumer / mems: 0.1 s learns 10-19 ms, 0.3 s 14-32,
+// 0.5 s 22-34, 1 s 29-33 (and 31.8-36.5 once the rate at the chain's start is turned into
+// its end's axes), 2 s 22-32 (fewer spans stay standing that long).
+constexpr double kAccelDelayMinSpanS = 1.0;
+// ... and only from readings whose norm is within this share of gravity: a turned gravity.
+// 2 / 5 / 10 / 20 %: with a 30 ms lag over the 84 classes -0.27 / -0.21 / -0.15 / -0.15°
+// summed, none worse than +0.01; 5 % also learns on an accelerometer whose scale is a few
+// per cent off, where 2 % would never learn.
+constexpr double kAccelDelayMaxNormDeviation = 0.05;
+
 // A start from a measured tilt is good to a few degrees: P ~ (0.05)² per component instead
 // of Algorithm 2's 1000·I, which would let the first accelerometer samples throw it around.
 const Mat4 kStartupCovariance = 0.05 * 0.05 * Mat4::Identity();
@@ -52,6 +65,8 @@ Estimator::Estimator(const EstimatorParams& params)
       heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
                             p_.bias_walk_rad_s_per_sqrt_s}),
       mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}),
+      accel_delay_({p_.accel_delay_max_s, p_.accel_delay_time_constant_s, p_.accel_delay_apply_below_sigma_s,
+                    kAccelDelayMinSpanS, /*repeats_are_holds=*/false}),
       vertical_rate_error_(p_) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
@@ -82,7 +97,8 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       clipped_share_started_ = false;
       gravity_residual_.restart(p_.accel_residual_time_constant_s, p_.accel_disturbance_time_constant_s);
       mag_prefilter_.restart();
-      mag_delay_.restartChain();  // the delay learned so far stays: it is the sensor's
+      mag_delay_.restartChain();  // the delays learned so far stay: they are the sensors'
+      accel_delay_.restartChain();
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
       heading_corrections_.restart(vertical_rate_error_.rateRadS());
       ekf_.setCovariance(kStartupCovariance);
@@ -133,34 +149,29 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
     heading_corrections_.addRateTurn(rate_correction, dt_s);
   }
   vertical_rate_error_.advance(dt_s, ekf_.attitude());
-  // The accelerometer and magnetometer samples are means over the interval, so they see the
-  // body as it was part of the way through it, while the gyro's increment has brought the
-  // attitude to its end: turn them by the rest of the interval's rotation. A field sample
-  // repeated by a magnetometer slower than the IMU is as much older again as it has been held,
-  // and the magnetometer's own delay, once learned, replaces the fraction where it makes the
-  // field's dip steadier (mag_delay_estimator.hpp).
-  const Vec3 turn_back = -p_.vector_sample_lag_fraction * dt_s * gyro;
-  const Vec3 accel_now = turnedBySmallAngle(s.accel_m_s2, turn_back);
-  mag_delay_.update(gyro, mag_usable ? &s.mag_uT : nullptr, field_for_rest != nullptr, dt_s);
-  double mag_lag_s = p_.vector_sample_lag_fraction * dt_s + mag_delay_.heldS();
-  Vec3 mag_now = turnedBySmallAngle(s.mag_uT, -mag_lag_s * gyro);
-  if (mag_delay_.candidateS() != 0.0) {
-    const double delayed_lag_s = mag_delay_.candidateS() + mag_delay_.heldS();
-    const Vec3 mag_delayed = turnedBySmallAngle(s.mag_uT, -delayed_lag_s * gyro);
-    mag_delay_.scoreDip(ekf_.attitude().conjugate() * Vec3::UnitZ(), mag_now, mag_delayed, field_for_rest != nullptr,
-                        dt_s);
-    if (mag_delay_.useCandidate()) {
-      mag_now = mag_delayed;
-      mag_lag_s = delayed_lag_s;
-    }
-  }
-  out_.mag_lag_s = mag_lag_s;
   // Averaged longer while the body keeps turning: the centripetal acceleration of a bend
   // turns in the gyro frame and averages out there only over time (turn_blended_low_pass.hpp).
-  const double turning = steady_turn_.update(gyro, ekf_.attitude().conjugate() * Vec3::UnitZ(),
-                                             motion_.level() != MotionLevel::kStanding, dt_s);
-  const Vec3 gravity_measurement = accel_prefilter_.update(increment, accel_now, dt_s, turning);
+  const Vec3 down_s = ekf_.attitude().conjugate() * Vec3::UnitZ();
+  const double turning = steady_turn_.update(gyro, down_s, motion_.level() != MotionLevel::kStanding, dt_s);
   const Vec3 clipped_share = trackClipping(s.accel_m_s2, increment, dt_s, turning);
+  // The accelerometer and magnetometer samples are means over the interval, so they see the
+  // body as it was part of the way through it, while the gyro's increment has brought the
+  // attitude to its end: turn them by the rest of the interval's rotation. A sample repeated
+  // by a sensor slower than the IMU is as much older again as it has been held, and each
+  // sensor's own delay, once learned, replaces the fraction where it makes the vector's angle
+  // to the down steadier (vector_delay_estimator.hpp). The specific force is a turned
+  // gravity only while the body stands (a walker's accelerations keep step with their turns,
+  // and would pass for a delay of a tenth of a second), and a clipped reading not at all.
+  const double force_deviation = std::abs(s.accel_m_s2.norm() - p_.gravity_m_s2);
+  const bool accel_clean = !out_.accel_clipped && motion_.level() == MotionLevel::kStanding &&
+                           force_deviation < kAccelDelayMaxNormDeviation * p_.gravity_m_s2;
+  accel_delay_.update(gyro, &s.accel_m_s2, accel_clean, dt_s);
+  const Vec3 accel_now =
+      turnedToNow(accel_delay_, s.accel_m_s2, gyro, down_s, accel_clean, dt_s, &out_.accel_lag_s);
+  const bool mag_clean = field_for_rest != nullptr;
+  mag_delay_.update(gyro, mag_usable ? &s.mag_uT : nullptr, mag_clean, dt_s);
+  const Vec3 mag_now = turnedToNow(mag_delay_, s.mag_uT, gyro, down_s, mag_clean, dt_s, &out_.mag_lag_s);
+  const Vec3 gravity_measurement = accel_prefilter_.update(increment, accel_now, dt_s, turning);
 
   // Henriksson §3.1 also goes back to a gyro-only background attitude whenever the level
   // steps up. headingd does not: that attitude has run on the gyro alone for 5-10 s, and
@@ -300,6 +311,22 @@ void Estimator::publish(std::int64_t t_ns) {
   out_.vertical_rate_correction_rad_s = vertical_rate_error_.rateRadS();
   out_.at_rest = bias_.atRest();
   out_.heading_sigma_rad = heading_uncertainty_.sigmaRad();
+}
+
+Vec3 Estimator::turnedToNow(VectorDelayEstimator& delay, const Vec3& sample, const Vec3& gyro, const Vec3& down_s,
+                            bool clean, double dt_s, double* lag_s) {
+  *lag_s = p_.vector_sample_lag_fraction * dt_s + delay.heldS();
+  Vec3 now = turnedBySmallAngle(sample, -*lag_s * gyro);
+  if (delay.candidateS() != 0.0) {
+    const double delayed_lag_s = delay.candidateS() + delay.heldS();
+    const Vec3 delayed = turnedBySmallAngle(sample, -delayed_lag_s * gyro);
+    delay.scoreDownAngle(down_s, now, delayed, clean, dt_s);
+    if (delay.useCandidate()) {
+      now = delayed;
+      *lag_s = delayed_lag_s;
+    }
+  }
+  return now;
 }
 
 Vec3 Estimator::trackClipping(const Vec3& accel_m_s2, const Quat& increment, double dt_s, double turning) {

@@ -118,6 +118,9 @@ int main(int argc, char** argv) {
                  "accelerometer and magnetometer samples: interval (the mean over the sample interval, as the "
                  "gyro's rate) or point (the value at the sample time)")
       ->capture_default_str();
+  app.add_option("--accel-lag-s", c.accel_lag_s,
+                 "how late the accelerometer reads against the gyro, 0..0.2 s, instead of the grade's (default: the "
+                 "grade's)");
   app.add_option("--talker", c.talker, "NMEA talker id: GP or GN")->capture_default_str();
   app.add_option("--cof", cof, "WMM coefficient file (NOAA COF)")->capture_default_str();
   app.footer(scenarioList() + "Exit codes: 0 written, 1 file error, 2 bad arguments.\n" + headingd::cli::kFileRules);

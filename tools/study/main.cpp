@@ -2,7 +2,7 @@
 // scored as tables. Runs in memory, two jobs at a time.
 //
 //   headingd-study broad [--dir DIR] [--rate HZ ...] [--set key=value ...] [--config TOML]
-//   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--set ...]
+//   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--accel-lag-s S] [--set ...]
 //   ... --trace FILE  (one run: per-sample diagnostics as CSV)
 //   ... --anchors DIR (VQF and Fusion beside headingd: the drivers built by ../shared/anchors/build.sh)
 // The h<2s% column: the share of scored samples whose heading error is within twice the
@@ -21,6 +21,7 @@
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "headingd/cli/parse_command_line.hpp"
 #include "headingd/files/output_file.hpp"
@@ -80,12 +81,14 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
          "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,"
          "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
-         "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms\n";
+         "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
   std::vector<double> rate_sigmas;
+  std::vector<std::pair<double, double>> accel_delays;  // the regression's estimate and sigma
   const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
     outputs.push_back(e.output());
+    accel_delays.emplace_back(e.accelDelay().estimateS(), e.accelDelay().sigmaS());
     rate_sigmas.push_back(e.headingUncertainty().rateSigmaRadS());
     still_blocks.push_back(e.counters().bias_still_blocks);
     restores.push_back(e.counters().mag_heading_restores);
@@ -101,7 +104,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDeg; };
     std::snprintf(line, sizeof line,
                   "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f\n",
+                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
@@ -110,7 +113,8 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2,
                   o.heading_sigma_rad * kDeg, o.mag_innovation_rad * kDeg, o.mag_gain, rate_sigmas[i] * kDeg,
                   o.heading_redefined ? 1 : 0, o.head_height, wrapped_deg(o.heading_rad - t.yaw_rad),
-                  wrapped_deg(o.yaw_rad - t.yaw_rad), 1e3 * o.vertical_rate_correction_rad_s, 1e3 * o.mag_lag_s);
+                  wrapped_deg(o.yaw_rad - t.yaw_rad), 1e3 * o.vertical_rate_correction_rad_s, 1e3 * o.mag_lag_s,
+                  1e3 * o.accel_lag_s, 1e3 * accel_delays[i].first, 1e3 * accel_delays[i].second);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());
@@ -222,6 +226,9 @@ int main(int argc, char** argv) {
   simulate->add_option("--settle", settle_s, "seconds after the motion from which the recovery is scored")
       ->capture_default_str();
   simulate->add_option("--cof", cof, "WMM coefficients")->capture_default_str();
+  std::optional<double> accel_lag_s;
+  simulate->add_option("--accel-lag-s", accel_lag_s,
+                       "the accelerometer this late against the gyro (s), instead of the grade's (headingd-sim)");
   double initial_error_deg = 0.0;
   simulate->add_option("--initial-error-deg", initial_error_deg,
                        "turn the first sample's accelerometer and magnetometer by this angle (about an axis drawn "
@@ -268,6 +275,7 @@ int main(int argc, char** argv) {
         c.seed = seeds[source];
         c.imu_grade = sim::parseImuGrade(grade);
         if (rate > 0.0) c.imu_rate_hz = rate;
+        c.accel_lag_s = accel_lag_s;
         r = study::fromSimulation(sim::simulate(c, *wmm), scenario + " seed " + std::to_string(c.seed));
         if (initial_error_deg != 0.0) study::startOffBy(r, initial_error_deg / kDeg, c.seed);
       } else {

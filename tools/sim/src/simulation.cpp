@@ -85,6 +85,8 @@ void validate(const SimConfig& c) {
   // UTC is written to 0.01 s: only rates whose period is a whole number of hundredths.
   const double g = c.gps_rate_hz;
   require(g == 1.0 || g == 2.0 || g == 4.0 || g == 5.0 || g == 10.0, "--gps-rate-hz must be 1, 2, 4, 5 or 10");
+  require(!c.accel_lag_s || (std::isfinite(*c.accel_lag_s) && *c.accel_lag_s >= 0.0 && *c.accel_lag_s <= 0.2),
+          "--accel-lag-s must be within 0..0.2");
   require(c.talker == "GP" || c.talker == "GN", "talker must be GP or GN");
   (void)core::decimalYear(c.year, c.month, c.day);  // throws for a date that does not exist
 }
@@ -106,8 +108,8 @@ SimResult simulate(const SimConfig& config, const Scenario& scenario, const core
   r.q_bs = mountRotation(config);
   r.trajectory = generateTrajectory(r.scenario, config.imu_rate_hz, Rng::stream(config.seed, kTrajectory));
 
-  const ImuModel model =
-      imuModel(config.imu_grade, field.earthFieldNed_uT().norm(), Rng::stream(config.seed, kImuDraw));
+  ImuModel model = imuModel(config.imu_grade, field.earthFieldNed_uT().norm(), Rng::stream(config.seed, kImuDraw));
+  if (config.accel_lag_s) model.timing.accel_lag_s = *config.accel_lag_s;
   r.timing = model.timing;
   const SensorTiming& timing = model.timing;
   const bool slow_mag = timing.mag_rate_hz > 0.0;

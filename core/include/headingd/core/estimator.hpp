@@ -2,7 +2,8 @@
 // The whole attitude and magnetic-heading estimator: pure and deterministic (same samples
 // in, same estimates out), no I/O, no clocks. Per sample:
 //   gate (timestamps, NaN) → gyro bias (still blocks) → EKF predict (Henriksson eq. 3.2-3.3)
-//   → the field turned by the magnetometer's learned delay (mag_delay_estimator.hpp)
+//   → the specific force and the field turned by each sensor's learned delay
+//     (vector_delay_estimator.hpp)
 //   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → d_k and R level (eq. 3.1, 3.4,
 //   hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's turn, in motion)
 //   → magnetometer heading observer (eq. 4.2, with an integral term for the vertical rate
@@ -23,7 +24,7 @@
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/core/heading_uncertainty.hpp"
 #include "headingd/core/imu_sample.hpp"
-#include "headingd/core/mag_delay_estimator.hpp"
+#include "headingd/core/vector_delay_estimator.hpp"
 #include "headingd/core/mag_disturbance.hpp"
 #include "headingd/core/sample_gate.hpp"
 #include "headingd/core/turn_blended_low_pass.hpp"
@@ -65,8 +66,10 @@ struct EstimatorOutput {
   double mag_innovation_rad = 0.0;   // ψ_mm - ψ_pred
   // How much older than the gyro's end of interval the field sample was taken to be (s): the
   // sample-interval fraction, or the magnetometer's learned delay, plus how long it was held
-  // (mag_delay_estimator.hpp).
+  // (vector_delay_estimator.hpp).
   double mag_lag_s = 0.0;
+  // The same for the accelerometer's sample (without holds: the fraction or its learned delay).
+  double accel_lag_s = 0.0;
   // 1-sigma of yaw_rad's error (heading_uncertainty.hpp); π/√3 while the heading is unknown.
   double heading_sigma_rad = 0.0;
 };
@@ -118,7 +121,8 @@ class Estimator {
   const EstimatorParams& params() const { return p_; }
   const AttitudeEkf& ekf() const { return ekf_; }
   const HeadingUncertainty& headingUncertainty() const { return heading_uncertainty_; }
-  const MagDelayEstimator& magDelay() const { return mag_delay_; }
+  const VectorDelayEstimator& magDelay() const { return mag_delay_; }
+  const VectorDelayEstimator& accelDelay() const { return accel_delay_; }
   const GyroBiasEstimator& gyroBias() const { return bias_; }
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
@@ -139,6 +143,10 @@ class Estimator {
   // gyro-frame low-pass as its readings (turning: its blend weight, SteadyTurnWeight): their
   // share in the gravity measurement, per axis (signed), in the current sensor axes. Zero
   // while clipping is not looked for.
+  // A vector sample turned to the end of the interval by its lag (written to *lag_s): the
+  // interval fraction plus its held time, or the delay learned for it where that is used.
+  Vec3 turnedToNow(VectorDelayEstimator& delay, const Vec3& sample, const Vec3& gyro, const Vec3& down_s, bool clean,
+                   double dt_s, double* lag_s);
   Vec3 trackClipping(const Vec3& accel_m_s2, const Quat& increment, double dt_s, double turning);
   void publish(std::int64_t t_ns);
   // The heading uncertainty's step: the rate error the bias filter allows about the vertical.
@@ -166,7 +174,8 @@ class Estimator {
   HeadingDefinitionSelector heading_definition_;
   MagDisturbanceDetector mag_disturbance_;
   HeadingUncertainty heading_uncertainty_;
-  MagDelayEstimator mag_delay_;  // the magnetometer's delay against the gyro
+  VectorDelayEstimator mag_delay_;    // the magnetometer's delay against the gyro
+  VectorDelayEstimator accel_delay_;  // the accelerometer's
   double mag_seconds_ = 0.0;  // time since the first usable field sample
   VerticalRateError vertical_rate_error_;  // the observer's integral term
   double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)

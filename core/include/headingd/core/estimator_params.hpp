@@ -34,7 +34,7 @@ struct EstimatorParams {
   // 0.5 lowers the inclination RMSE 0.82 → 0.76 deg, and to 0.76/0.77 deg when the trials
   // are resampled to 100/50 Hz (0.96/1.24 deg without).
   double vector_sample_lag_fraction = 0.5;
-  // The magnetometer's delay against the gyro, learned from the data (mag_delay_estimator.hpp)
+  // The magnetometer's delay against the gyro, learned from the data (vector_delay_estimator.hpp)
   // and then used for the field instead of the fraction above where it makes the field's dip
   // steadier; a held field sample counts as older by the time it was held. The learned delay
   // is clamped to this (phones: 20-40 ms; 0: nothing learned, holds ignored). On the
@@ -54,6 +54,24 @@ struct EstimatorParams {
   // ... once its standard deviation is below this (2 / 5 / 10 ms: within 0.07° on every
   // class above, no order among them).
   double mag_delay_apply_below_sigma_s = 0.005;
+  // The accelerometer's delay against the gyro, learned in the same way and used instead of
+  // the fraction above where it makes the specific force's angle to the down steadier, but
+  // only from spans of a second or more in which the body stands (motion level) and each
+  // reading's norm is within 5 % of gravity (estimator.cpp): while a person walks or runs, the
+  // body's accelerations keep step with its turns and pass for a delay (learned from all
+  // samples: -100 to -200 ms on simulated walks and runs, handheld +0.3-0.4° fitted). Clamped
+  // to this (0: not learned, holds ignored). With the accelerometer 30 ms late
+  // (`headingd-study sim --accel-lag-s 0.03`, 84 classes, 6 seeds): slow rotation learns
+  // 32-38 ms (the lag and half a sample: 35) and loses 0.01-0.03° fitted instead of
+  // 0.02-0.07; no class worse than without (±0.01); where the body walks or runs nothing is
+  // learned and the lag costs what it did (hand-held phone +0.29° inclination). Without a lag
+  // every class within ±0.01°; BROAD and the shared phones: nothing learned (σ 5-280 ms),
+  // unchanged. docs/side-by-side.md, "The accelerometer's delay".
+  double accel_delay_max_s = 0.1;
+  // ... with sums that forget with this time constant and counted once their σ is below
+  // this (the magnetometer's values: the accelerometer's learning is rarer, not noisier).
+  double accel_delay_time_constant_s = 300.0;
+  double accel_delay_apply_below_sigma_s = 0.005;
 
   // --- Gyroscope noise for Q_k (Henriksson eq. 3.3) ---
   // Process noise of the bias-corrected angular rate, rad/s per sample (1σ). Far above the

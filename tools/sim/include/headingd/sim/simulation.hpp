@@ -7,6 +7,7 @@
 // kStartTimeOfDayS plus t. A replay therefore recovers t of a sentence as
 // UTC(sentence) - (date 12:00:00 UTC).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,6 +51,9 @@ struct SimConfig {
   double gps_rate_hz = 1.0;
   ImuGrade imu_grade = ImuGrade::kConsumer;
   VectorSampling vector_sampling = VectorSampling::kIntervalMean;
+  // How late the accelerometer reads against the gyro (s), instead of what the grade draws
+  // (phones: 0-5 ms; the other grades: none): a sensor whose delay has to be learned.
+  std::optional<double> accel_lag_s;
   std::string talker = "GP";
 };
 

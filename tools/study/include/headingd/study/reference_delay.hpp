@@ -1,6 +1,6 @@
 #pragma once
 // How late a recording's magnetometer and gyro are against its reference attitude, measured
-// with the reference itself (a check of the estimator's learned delay, mag_delay_estimator.hpp,
+// with the reference itself (a check of the estimator's learned delay, vector_delay_estimator.hpp,
 // that does not use the estimator):
 //  - the field: a constant earth field read Δ late, turned into the earth frame by the
 //    reference at the sample's time, swings with every turn; the Δ that makes it steadiest
