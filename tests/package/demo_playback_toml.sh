@@ -1,6 +1,9 @@
 #!/bin/sh
 # Prints a daemon configuration that plays the demo capture (candump and NMEA logs) as fast as
 # it can into an LCM log file and exits: the package tests' way to make real LCM traffic.
+# The rings hold the whole capture (60001 IMU samples, 600 GPS epochs): at 1000x a stall of
+# the machine of a few tens of ms would otherwise fill the default 64-epoch GPS ring and
+# drop epochs (counted), which the tests that count every message would take for a fault.
 #   demo_playback_toml.sh DATA_DIR LCM_LOG   (DATA_DIR: config/ of a checkout or /usr/share/headingd)
 set -eu
 data=$1 log=$2
@@ -11,6 +14,7 @@ wmm = "$data/wmm/WMM2025.COF"
 url = "file://$log?mode=w"
 [rings]
 imu_capacity = 65536
+gps_capacity = 1024
 [playback]
 speed = 1000.0
 at_end = "exit"
