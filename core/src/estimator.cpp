@@ -13,7 +13,7 @@ namespace {
 // estimate towards zero. Simulated slow rotation, accelerometer 30 ms late (35 ms with the
 // interval mean), 3 seeds of phone / consumer / mems: 0.1 s learns 10-19 ms, 0.3 s 14-32,
 // 0.5 s 22-34, 1 s 29-33 (and 31.8-36.5 once the rate at the chain's start is turned into
-// its end's axes), 2 s 22-32 (fewer spans stay standing that long).
+// its end's axes), 2 s 22-32 (with a larger σ).
 constexpr double kAccelDelayMinSpanS = 1.0;
 // ... and only from readings whose norm is within this share of gravity: a turned gravity.
 // 2 / 5 / 10 / 20 %: with a 30 ms lag over the 84 classes -0.27 / -0.21 / -0.15 / -0.15°
