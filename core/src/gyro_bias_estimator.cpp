@@ -120,7 +120,8 @@ void GyroBiasEstimator::TurnSpread::add(double turn_rate_rad_s, double window_s)
   const double value = correlated.update(turn_rate_rad_s, window_s);
   elapsed_s += window_s;
   // Running means (weight T/t) until the low-pass's weight over 10 τ_c is the larger.
-  const double weight = std::max(window_s / elapsed_s, 1.0 - lowPassAlpha(window_s, 10.0 * correlation_time_s));
+  const double weight =
+      startedLowPassWeight(elapsed_s, window_s, 1.0 - lowPassAlpha(window_s, 10.0 * correlation_time_s));
   const auto track = [weight](double x, double& m, double& v) {
     const double deviation = x - m;
     m += weight * deviation;

@@ -64,15 +64,19 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance) {
 }
 
 void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
-  if (!innovation_started_) {
-    innovation_mean_rad_ = innovation_rad;
-    innovation_variance_ = innovation_rad * innovation_rad;
-    innovation_started_ = true;
-    return;
-  }
-  innovation_mean_rad_ += (1.0 - innovation_mean_decay_(dt_s)) * (innovation_rad - innovation_mean_rad_);
+  // Both averages start as running means: seeded with the first sample instead, one
+  // magnetometer sample's noise (5-10 deg on a consumer part) stood for the innovations' spread
+  // for a whole field_correlation_s and lifted the sigma of every run for a minute. And the
+  // spread waits for a full second of innovations, the time the mean needs to average that
+  // noise away.
+  innovation_seen_s_ += dt_s;
+  innovation_mean_rad_ += startedLowPassWeight(innovation_seen_s_, dt_s, 1.0 - innovation_mean_decay_(dt_s)) *
+                          (innovation_rad - innovation_mean_rad_);
+  if (innovation_seen_s_ < kInnovationMeanS) return;
+  const double spread_seen_s = innovation_seen_s_ - kInnovationMeanS + dt_s;
   const double squared = innovation_mean_rad_ * innovation_mean_rad_;
-  innovation_variance_ += (1.0 - field_decay_(dt_s)) * (squared - innovation_variance_);
+  innovation_variance_ +=
+      startedLowPassWeight(spread_seen_s, dt_s, 1.0 - field_decay_(dt_s)) * (squared - innovation_variance_);
 }
 
 void HeadingUncertainty::correct(double gain, double rate_gain) {

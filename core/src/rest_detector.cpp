@@ -62,8 +62,7 @@ RestDetector::RestDetector(const EstimatorParams& p)
 double RestDetector::SteadyVector::update(const Vec3& v, double dt_s) {
   elapsed_s += dt_s;
   const double low_pass_weight = 1.0 - alpha(dt_s);  // eq. 2.13
-  // A running mean (weight dt/t) until that weight falls below the low-pass's.
-  const double weight = elapsed_s * low_pass_weight < dt_s ? dt_s / elapsed_s : low_pass_weight;
+  const double weight = startedLowPassWeight(elapsed_s, dt_s, low_pass_weight);
   mean += weight * (v - mean);
   deviation2 += weight * ((v - mean).squaredNorm() - deviation2);
   return std::sqrt(deviation2);

@@ -1,9 +1,11 @@
 // The published heading 1-sigma (core/heading_uncertainty.hpp) is never over-confident: in
-// every simulator scenario class with a motion, at the mems and consumer grades, and on the
-// BROAD trials, at least 90 % of the heading errors lie within 2 sigma. (Issue 28 asks for
-// 90-97 %; the upper end is not met yet: the gyro bias filter's vertical uncertainty is
-// pessimistic for a consumer gyro, and with the floor of the field's error the small errors of
-// the hand-held motions lie well within 2 sigma: docs/heading-sigma.md has the figures.)
+// every simulator scenario class with a motion, at the mems and consumer grades (seeds 1-6:
+// with three, one seed's residual hard iron, a 2.4-sigma draw of the floor, decides a class),
+// and on the BROAD trials, at least 90 % of the heading errors lie within 2 sigma. (Issue 28
+// asks for 90-97 %; the upper end is not met in half of the classes: the gyro bias filter's
+// one random-walk prior is pessimistic for a steadier gyro, and with the floor of the field's
+// error the small errors of the hand-held motions lie well within 2 sigma:
+// docs/heading-sigma.md has the figures.)
 // Simulations are scored plainly (their truth is in the estimator's magnetic frame); a BROAD
 // trial after the constant earth and body rotations are fitted (its reference has its own
 // north), as headingd-study does.
@@ -34,7 +36,7 @@ class SimulatedClass : public ::testing::TestWithParam<std::tuple<const char*, s
 TEST_P(SimulatedClass, AtLeast90PercentOfHeadingErrorsLieWithin2Sigma) {
   const auto [scenario, grade] = GetParam();
   double sum = 0.0;
-  const std::vector<std::uint64_t> seeds = {1, 2, 3};
+  const std::vector<std::uint64_t> seeds = {1, 2, 3, 4, 5, 6};
   for (const std::uint64_t seed : seeds) sum += shareWithin2Sigma(simulated(scenario, seed, grade), false);
   const double share = sum / static_cast<double>(seeds.size());
   std::printf("%s, %s: %.1f %% of heading errors within 2 sigma\n", scenario, sim::imuGradeName(grade), 100.0 * share);

@@ -137,5 +137,25 @@ TEST(HeadingUncertainty, AFieldThatShowsItsErrorsRaisesTheSigma) {
   EXPECT_GT(shown.sigmaRad(), 2.0 * quiet.sigmaRad());
 }
 
+TEST(HeadingUncertainty, NoSingleEarlySampleStandsForTheFieldsSpread) {
+  // One noisy magnetometer sample (20 deg off) among clean ones right after the heading was
+  // set: averaged with the second's other samples it says next to nothing about the field.
+  // (Seeded with it, the spread's average said 20 deg for a whole correlation time.)
+  const HeadingUncertaintyParams p{1.0 * kDeg, 30.0, 0.0};
+  HeadingUncertainty clean(p), one_noisy(p);
+  const double gain = magObserverGain(kDt, 15.0);
+  for (HeadingUncertainty* h : {&clean, &one_noisy}) {
+    h->predict(kDt, 1e-8);
+    h->correct(1.0, 0.0);
+  }
+  for (int i = 0; i < 1000; ++i) {
+    for (HeadingUncertainty* h : {&clean, &one_noisy}) h->predict(kDt, 1e-8);
+    clean.observeInnovation(0.0, kDt);
+    one_noisy.observeInnovation(i == 0 ? 20.0 * kDeg : 0.0, kDt);
+    for (HeadingUncertainty* h : {&clean, &one_noisy}) h->correct(gain, 0.0);
+  }
+  EXPECT_LT(one_noisy.sigmaRad(), 1.05 * clean.sigmaRad());
+}
+
 }  // namespace
 }  // namespace headingd::core

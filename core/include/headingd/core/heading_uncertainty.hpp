@@ -63,9 +63,9 @@ class HeadingUncertainty {
   bool known_ = false;
   bool rate_started_ = false;   // P_(1, 1) has been set from the bias filter
   bool field_started_ = false;  // P_(2, 2) has been set
-  double innovation_mean_rad_ = 0.0;     // over about a second
-  double innovation_variance_ = 0.0;     // of that mean, over field_correlation_s
-  bool innovation_started_ = false;
+  double innovation_seen_s_ = 0.0;    // of innovations observed
+  double innovation_mean_rad_ = 0.0;  // over about a second
+  double innovation_variance_ = 0.0;  // of that mean, over field_correlation_s
 };
 
 }  // namespace headingd::core

@@ -1,5 +1,6 @@
 #pragma once
 // First-order low-pass filter of Henriksson §2.3.
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -19,6 +20,14 @@ inline double lowPassAlpha(double sample_period_s, double time_constant_s) {
 // lowPassAlpha is eq. 2.17's).
 inline double expDecay(double sample_period_s, double time_constant_s) {
   return std::exp(-sample_period_s / time_constant_s);
+}
+
+// The weight of a new sample in a mean that starts as the running mean of the samples so far
+// (weight dt/t after t seconds of them, this sample's dt included) and becomes a low-pass of
+// weight low_pass_weight once that weighs more: the first samples count no more than later
+// ones, and no single early sample stands for a whole time constant.
+inline double startedLowPassWeight(double seen_s, double dt_s, double low_pass_weight) {
+  return seen_s > 0.0 ? std::max(dt_s / seen_s, low_pass_weight) : low_pass_weight;
 }
 
 // A coefficient of one time constant, kept for the last sample period: the period comes
