@@ -162,9 +162,10 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   // to the down steadier (vector_delay_estimator.hpp). The specific force is a turned
   // gravity only while the body stands (a walker's accelerations keep step with their turns,
   // and would pass for a delay of a tenth of a second), and a clipped reading not at all.
-  const double force_deviation = std::abs(s.accel_m_s2.norm() - p_.gravity_m_s2);
-  const bool accel_clean = !out_.accel_clipped && motion_.level() == MotionLevel::kStanding &&
-                           force_deviation < kAccelDelayMaxNormDeviation * p_.gravity_m_s2;
+  // (In this order, so that the norm is taken only where the rest holds.)
+  const bool accel_clean =
+      p_.accel_delay_max_s > 0.0 && !out_.accel_clipped && motion_.level() == MotionLevel::kStanding &&
+      std::abs(s.accel_m_s2.norm() - p_.gravity_m_s2) < kAccelDelayMaxNormDeviation * p_.gravity_m_s2;
   accel_delay_.update(gyro, &s.accel_m_s2, accel_clean, dt_s);
   const Vec3 accel_now =
       turnedToNow(accel_delay_, s.accel_m_s2, gyro, down_s, accel_clean, dt_s, &out_.accel_lag_s);

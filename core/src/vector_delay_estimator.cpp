@@ -12,7 +12,7 @@ void VectorDelayEstimator::update(const Vec3& gyro_rad_s, const Vec3* sample, bo
   const bool fresh = sample != nullptr && (!p_.repeats_are_holds || *sample != last_seen_);
   if (sample != nullptr) {
     held_s_ = fresh ? 0.0 : held_s_ + dt_s;
-    last_seen_ = *sample;
+    if (p_.repeats_are_holds) last_seen_ = *sample;
   }
   if (sample == nullptr || !clean) {
     has_previous_ = false;

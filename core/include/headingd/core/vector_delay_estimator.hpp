@@ -75,7 +75,7 @@ class VectorDelayEstimator {
   Vec3 start_rate_ = Vec3::Zero();      // the rate when the chain started, turned by the gyro since
   Vec3 predicted_ = Vec3::Zero();       // the last fresh sample turned by the gyro since
   double chain_s_ = 0.0;                // how long ago that sample was
-  Vec3 last_seen_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 last_seen_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // repeats_are_holds only
   double held_s_ = 0.0;
   double sum_xy_ = 0.0, sum_xx_ = 0.0, sum_yy_ = 0.0, count_ = 0.0;
   double estimate_s_ = 0.0, sigma_s_ = std::numeric_limits<double>::infinity();
@@ -85,6 +85,9 @@ class VectorDelayEstimator {
   // the candidate [1]: weighted sums for their means and spreads.
   double angle_weight_ = 0.0;
   double cos_sum_[2] = {0.0, 0.0}, cos_sum_sq_[2] = {0.0, 0.0};
+  // Two of the same time constant because each keeps the coefficient of one period: the
+  // spreads' sums decay per sample (the IMU's period), the regression's per chain (one sample
+  // of a slower sensor, or min_span_s and more); one cache for both would miss on every call.
   ExpDecay decay_;        // of the spreads' sums, per sample
   ExpDecay chain_decay_;  // of the regression's sums, per chain
 };
