@@ -61,7 +61,8 @@ Estimator::Estimator(const EstimatorParams& params)
       heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave, p_.redefine_heading_after_s),
       mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
                         p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
-                        p_.mag_max_reference_dip_deviation_rad, p_.mag_back_to_before_s}),
+                        p_.mag_max_reference_dip_deviation_rad, p_.mag_back_to_before_s,
+                        p_.mag_residual_hard_iron_uT}),
       heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
                             p_.bias_walk_rad_s_per_sqrt_s}),
       mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}),
@@ -97,6 +98,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       clipped_share_started_ = false;
       gravity_residual_.restart(p_.accel_residual_time_constant_s, p_.accel_disturbance_time_constant_s);
       mag_prefilter_.restart();
+      mag_disturbance_.restart();
       mag_delay_.restartChain();  // the delays learned so far stay: they are the sensors'
       accel_delay_.restartChain();
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
@@ -207,6 +209,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   out_.mag_disturbed = false;
   out_.mag_gain = 0.0;
   mag_prefilter_.advance(increment);
+  mag_disturbance_.advance(increment);
   mag_sample_dt_s_ += dt_s;
   if (mag_usable) {
     correctHeading(mag_prefilter_.add(mag_now, mag_sample_dt_s_), dt_s, turn_rate_rad_s);
@@ -241,7 +244,7 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate
     ++mag_no_heading_;
     return;
   }
-  out_.mag_disturbance = mag_disturbance_.update(mag_uT.norm(), m.dip_rad, dt_s);
+  out_.mag_disturbance = mag_disturbance_.update(mag_uT, m.dip_rad, dt_s);
   out_.mag_disturbed = out_.mag_disturbance.any();
   // A disturbance counts once it has lasted mag_restore_confirm_s: single noisy samples must
   // not swap in a heading with seconds of gyro drift.

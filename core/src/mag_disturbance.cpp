@@ -10,7 +10,30 @@ void MagDisturbanceDetector::setReference(double field_norm_uT, double inclinati
   reference_dip_rad_ = inclination_rad;
 }
 
+void MagDisturbanceDetector::restart() {
+  direction_gyro_frame_.restart();
+  direction_sensor_axes_ = LowPass<Vec3>(p_.time_constant_s);
+}
+
+MagDisturbance MagDisturbanceDetector::update(const Vec3& field_uT, double dip_rad, double dt_s) {
+  const double norm = field_uT.norm();
+  turned_rad_ = 0.0;
+  if (norm > 0.0) {
+    const Vec3 direction = field_uT / norm;
+    const Vec3 turning = direction_gyro_frame_.add(direction, dt_s);
+    const Vec3 still = direction_sensor_axes_.update(direction, dt_s);
+    const double sin_angle = turning.cross(still).norm(), cos_angle = turning.dot(still);
+    if (sin_angle > 0.0 || cos_angle > 0.0) turned_rad_ = std::atan2(sin_angle, cos_angle);
+  }
+  return test(norm, dip_rad, dt_s);
+}
+
 MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_rad, double dt_s) {
+  turned_rad_ = 0.0;
+  return test(field_norm_uT, dip_rad, dt_s);
+}
+
+MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad, double dt_s) {
   // Deviations are taken against the low-pass *before* this sample enters it.
   norm_deviation_ = norm_lp_.initialised() ? std::abs(field_norm_uT - norm_lp_.value()) : 0.0;  // eq. 4.5
   dip_deviation_ = dip_lp_.initialised() ? std::abs(dip_rad - dip_lp_.value()) : 0.0;
@@ -18,7 +41,8 @@ MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_r
   dip_lp_.update(dip_rad, dt_s);
   norm_floor_.update(std::sqrt(norm_deviation2_.update(norm_deviation_ * norm_deviation_, dt_s)), dt_s);
   dip_floor_.update(std::sqrt(dip_deviation2_.update(dip_deviation_ * dip_deviation_, dt_s)), dt_s);
-  const double norm_threshold = norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT);
+  const double norm_threshold = norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT) +
+                                p_.residual_hard_iron_uT * turned_rad_;
   const double dip_threshold = dip_floor_.threshold(4.0, p_.max_dip_deviation_rad, 5.0 * p_.max_dip_deviation_rad);
   MagDisturbance d;
   d.norm_jump = norm_deviation_ > norm_threshold;

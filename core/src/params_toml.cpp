@@ -64,6 +64,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"mag_back_to_before_s", &P::mag_back_to_before_s, 0.0, 600.0, "s"},
       {"mag_max_norm_deviation_uT", &P::mag_max_norm_deviation_uT, 0.0, 1000.0, "uT"},
       {"mag_max_dip_deviation_rad", &P::mag_max_dip_deviation_rad, 0.0, 3.2, "rad"},
+      {"mag_residual_hard_iron_uT", &P::mag_residual_hard_iron_uT, 0.0, 1000.0, "uT"},
       {"mag_max_reference_norm_deviation_uT", &P::mag_max_reference_norm_deviation_uT, 0.0, 1000.0, "uT"},
       {"mag_max_reference_dip_deviation_rad", &P::mag_max_reference_dip_deviation_rad, 0.0, 3.2, "rad"},
       {"mag_restore_max_age_s", &P::mag_restore_max_age_s, 0.0, 600.0, "s"},

@@ -230,9 +230,10 @@ struct EstimatorParams {
   // 90-97 %: the share of heading errors within 2 sigma (headingd-study's h<2s%, 6 seeds of
   // each of the 84 simulator classes with a motion: mems, consumer and phone grades at 100 and
   // 50 Hz; docs/heading-sigma.md), with 30 s: 2.0° 8 below 90 % / 39 within; 2.25° 5 / 33;
-  // 2.5° 4 / 30; 2.75° 4 / 17; 3.0° 4 / 13. The four left below are phone-grade classes no
-  // floor helps (a lost tilt, building fields). Every mems and consumer class at 100 Hz is at
-  // 91.9 % or more with 2.5°, and the 14 BROAD trials at 100 %. 1.5° / 10 s left the §6.3
+  // 2.5° 4 / 30 (4 / 28 with mag_residual_hard_iron_uT); 2.75° 4 / 17; 3.0° 4 / 13. The four
+  // left below are phone-grade classes no floor helps (a lost tilt, building fields). Every
+  // mems and consumer class at 100 Hz is at 91.8 % or more with 2.5°, and the 14 BROAD
+  // trials at 100 %. 1.5° / 10 s left the §6.3
   // runs (mems) at 84 % and the run at 88 % (a calibration's residual hard iron, ~3° and seen
   // anew after each turn, which the innovations cannot show); 3.5° / 10 s put every class but
   // the urban walk at 99-100 % (3 seeds, 2026-12-05).
@@ -249,6 +250,19 @@ struct EstimatorParams {
   double mag_disturbance_time_constant_s = 3.0;
   double mag_max_norm_deviation_uT = 1.5;
   double mag_max_dip_deviation_rad = 0.07;  // 4 deg
+  // ... the strength's threshold growing by this (µT per rad) × the angle the sensor has
+  // turned against the field within that time constant (mag_disturbance.hpp): the residual
+  // hard iron of a calibration, which makes the measured strength change as the sensor turns.
+  // 0 turns the allowance off. Chosen for the worst case (2026-12-06): fitted total of the
+  // shared phone groups nexus5 / nexus5_magnets / iphone / iphone_magnets, of BROAD's 14
+  // trials, and the largest loss of any of the 84 simulator classes against 0 (6 seeds):
+  // 0: 1.53 / 5.19 / 2.82 / 3.79°, 1.25°; 2: 1.46 / 4.56 / 2.76 / 3.69°, 1.26°, +0.04°;
+  // 3: 1.46 / 4.55 / 2.74 / 3.66°, 1.25°, +0.04°; 4: 1.45 / 4.48 / 2.74 / 3.61°, 1.26°,
+  // +0.05°; 6: 1.44 / 4.51 / 2.74 / 3.61°, 1.24°, +0.11°; 8: 1.45 / 4.65 / 2.74 / 3.69°,
+  // 1.27°. The loss is the simulated urban walk's consumer grade (8.36 → 8.40° at 100 Hz),
+  // whose mems and phone grades gain; no class's ratio to VQF gets worse than before. The
+  // undisturbed phone walks had 7-21 % of their samples flagged by the strength test before.
+  double mag_residual_hard_iron_uT = 3.0;
   // With a position (setReferenceField from the WMM): the strength may differ from the
   // model's F by this much (indoors the field is often weaker but still points north,
   // §4.2), the dip from the model's inclination by this much. Both are tested on the
