@@ -17,20 +17,24 @@ void MagDisturbanceDetector::restart() {
 
 MagDisturbance MagDisturbanceDetector::update(const Vec3& field_uT, double dip_rad, double dt_s) {
   const double norm = field_uT.norm();
-  turned_rad_ = 0.0;
-  if (norm > 0.0) {
+  has_directions_ = p_.residual_hard_iron_uT > 0.0 && norm > 0.0;
+  if (has_directions_) {
     const Vec3 direction = field_uT / norm;
-    const Vec3 turning = direction_gyro_frame_.add(direction, dt_s);
-    const Vec3 still = direction_sensor_axes_.update(direction, dt_s);
-    const double sin_angle = turning.cross(still).norm(), cos_angle = turning.dot(still);
-    if (sin_angle > 0.0 || cos_angle > 0.0) turned_rad_ = std::atan2(sin_angle, cos_angle);
+    direction_turning_ = direction_gyro_frame_.add(direction, dt_s);
+    direction_still_ = direction_sensor_axes_.update(direction, dt_s);
   }
   return test(norm, dip_rad, dt_s);
 }
 
 MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_rad, double dt_s) {
-  turned_rad_ = 0.0;
+  has_directions_ = false;
   return test(field_norm_uT, dip_rad, dt_s);
+}
+
+double MagDisturbanceDetector::turnedAgainstField() const {
+  const double sin_angle = direction_turning_.cross(direction_still_).norm();
+  const double cos_angle = direction_turning_.dot(direction_still_);
+  return sin_angle > 0.0 || cos_angle > 0.0 ? std::atan2(sin_angle, cos_angle) : 0.0;
 }
 
 MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad, double dt_s) {
@@ -41,8 +45,13 @@ MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad
   dip_lp_.update(dip_rad, dt_s);
   norm_floor_.update(std::sqrt(norm_deviation2_.update(norm_deviation_ * norm_deviation_, dt_s)), dt_s);
   dip_floor_.update(std::sqrt(dip_deviation2_.update(dip_deviation_ * dip_deviation_, dt_s)), dt_s);
-  const double norm_threshold = norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT) +
-                                p_.residual_hard_iron_uT * turned_rad_;
+  double norm_threshold = norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT);
+  // The allowance, measured only where it may decide (an angle costs an atan2).
+  turned_rad_ = 0.0;
+  if (has_directions_ && norm_deviation_ > norm_threshold) {
+    turned_rad_ = turnedAgainstField();
+    norm_threshold += p_.residual_hard_iron_uT * turned_rad_;
+  }
   const double dip_threshold = dip_floor_.threshold(4.0, p_.max_dip_deviation_rad, 5.0 * p_.max_dip_deviation_rad);
   MagDisturbance d;
   d.norm_jump = norm_deviation_ > norm_threshold;

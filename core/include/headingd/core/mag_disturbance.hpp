@@ -77,9 +77,12 @@ class MagDisturbanceDetector {
   // angle the sensor has turned against the field. Call advance() with every gyro increment,
   // also between field samples, and restart() after a gap in the samples.
   MagDisturbance update(const Vec3& field_uT, double dip_rad, double dt_s);
-  void advance(const Quat& gyro_increment) { direction_gyro_frame_.advance(gyro_increment); }
+  void advance(const Quat& gyro_increment) {
+    if (p_.residual_hard_iron_uT > 0.0) direction_gyro_frame_.advance(gyro_increment);
+  }
   void restart();
-  // The angle by which the sensor turned against the field, as the last update saw it (rad).
+  // The angle by which the sensor had turned against the field at the last update (rad);
+  // measured only where the strength test needed it (0 otherwise).
   double turnedRad() const { return turned_rad_; }
 
   // The Earth's field at the current place (WMM): total intensity and inclination.
@@ -89,8 +92,9 @@ class MagDisturbanceDetector {
   double dipDeviation() const { return dip_deviation_; }
 
  private:
-  // The tests, with turned_rad_ as the last update set it.
+  // The tests; the strength's allowance from the directions when has_directions_.
   MagDisturbance test(double field_norm_uT, double dip_rad, double dt_s);
+  double turnedAgainstField() const;
 
   MagDisturbanceParams p_;
   LowPass<double> norm_lp_;
@@ -103,6 +107,8 @@ class MagDisturbanceDetector {
   // axes; the angle between them is the sensor's turning against the field.
   GyroFrameLowPass direction_gyro_frame_;
   LowPass<Vec3> direction_sensor_axes_;
+  bool has_directions_ = false;  // the last update brought the field's direction
+  Vec3 direction_turning_ = Vec3::Zero(), direction_still_ = Vec3::Zero();
   double turned_rad_ = 0.0;
   double norm_deviation_ = 0.0;
   double dip_deviation_ = 0.0;
