@@ -26,11 +26,6 @@ MagDisturbance MagDisturbanceDetector::update(const Vec3& field_uT, double dip_r
   return test(norm, dip_rad, dt_s);
 }
 
-MagDisturbance MagDisturbanceDetector::update(double field_norm_uT, double dip_rad, double dt_s) {
-  has_directions_ = false;
-  return test(field_norm_uT, dip_rad, dt_s);
-}
-
 double MagDisturbanceDetector::turnedAgainstField() const {
   const double sin_angle = direction_turning_.cross(direction_still_).norm();
   const double cos_angle = direction_turning_.dot(direction_still_);

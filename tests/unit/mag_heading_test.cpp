@@ -138,18 +138,17 @@ MagDisturbanceDetector lowPassDetector() {
   return MagDisturbanceDetector(p);
 }
 
-// update() reports a bool or a struct of which tests fired, depending on the version.
-inline bool disturbed(bool verdict) { return verdict; }
-template <typename Verdict>
-bool disturbed(const Verdict& verdict) {
-  return verdict.any();
-}
+bool disturbed(const MagDisturbance& verdict) { return verdict.any(); }
+
+// A field of this strength (µT); its direction does not matter where the detector's
+// allowance for a residual hard iron is 0.
+Vec3 fieldOf(double norm_uT) { return Vec3(0.0, 0.0, norm_uT); }
 
 TEST(MagDisturbance, SteadyFieldIsNeverDisturbed) {
   MagDisturbanceDetector d = lowPassDetector();
   Random rng(53);
   for (int i = 0; i < 2000; ++i) {
-    EXPECT_FALSE(disturbed(d.update(49.0 + rng.normal(0.2), 1.15 + rng.normal(0.005), 0.01))) << i;
+    EXPECT_FALSE(disturbed(d.update(fieldOf(49.0 + rng.normal(0.2)), 1.15 + rng.normal(0.005), 0.01))) << i;
   }
 }
 
@@ -157,21 +156,21 @@ TEST(MagDisturbance, StrengthStepIsDisturbedUntilTheLowPassFollows) {
   // Eq. 4.5: Δm = ||m| - |m_lp|| against the threshold; a lasting change is accepted again
   // once the low-pass (τ = 3 s) has followed it: 5 µT · e^{-t/τ} < 3 µT after ~1.5 s.
   MagDisturbanceDetector d = lowPassDetector();
-  for (int i = 0; i < 500; ++i) ASSERT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
-  EXPECT_TRUE(disturbed(d.update(54.0, 1.15, 0.01)));
+  for (int i = 0; i < 500; ++i) ASSERT_FALSE(disturbed(d.update(fieldOf(49.0), 1.15, 0.01)));
+  EXPECT_TRUE(disturbed(d.update(fieldOf(54.0), 1.15, 0.01)));
   EXPECT_NEAR(d.normDeviation(), 5.0, 1e-9);
   int count = 1;
-  for (int i = 0; i < 500; ++i) count += disturbed(d.update(54.0, 1.15, 0.01)) ? 1 : 0;
+  for (int i = 0; i < 500; ++i) count += disturbed(d.update(fieldOf(54.0), 1.15, 0.01)) ? 1 : 0;
   EXPECT_GT(count, 100);  // for more than a second
   EXPECT_LT(count, 250);  // and not for much longer than the low-pass needs
-  EXPECT_FALSE(disturbed(d.update(54.0, 1.15, 0.01)));
+  EXPECT_FALSE(disturbed(d.update(fieldOf(54.0), 1.15, 0.01)));
 }
 
 TEST(MagDisturbance, DipChangeIsDisturbed) {
   MagDisturbanceDetector d = lowPassDetector();
-  for (int i = 0; i < 500; ++i) ASSERT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
-  EXPECT_FALSE(disturbed(d.update(49.0, 1.15 + 0.05, 0.01)));  // below 0.07 rad
-  EXPECT_TRUE(disturbed(d.update(49.0, 1.15 + 0.1, 0.01)));
+  for (int i = 0; i < 500; ++i) ASSERT_FALSE(disturbed(d.update(fieldOf(49.0), 1.15, 0.01)));
+  EXPECT_FALSE(disturbed(d.update(fieldOf(49.0), 1.15 + 0.05, 0.01)));  // below 0.07 rad
+  EXPECT_TRUE(disturbed(d.update(fieldOf(49.0), 1.15 + 0.1, 0.01)));
   EXPECT_GT(d.dipDeviation(), 0.07);
 }
 
@@ -248,10 +247,10 @@ MagDisturbanceDetector returningDetector() {
 // Samples (at 100 Hz) until the detector says clean again after `spike_s` of a 300 µT
 // field with a wrong dip that then returns to 49 µT, 1.15 rad.
 int samplesDisturbedAfterASpike(MagDisturbanceDetector d, double spike_s) {
-  for (int i = 0; i < 500; ++i) EXPECT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
-  for (int i = 0; i < static_cast<int>(spike_s * 100); ++i) EXPECT_TRUE(disturbed(d.update(300.0, 0.3, 0.01)));
+  for (int i = 0; i < 500; ++i) EXPECT_FALSE(disturbed(d.update(fieldOf(49.0), 1.15, 0.01)));
+  for (int i = 0; i < static_cast<int>(spike_s * 100); ++i) EXPECT_TRUE(disturbed(d.update(fieldOf(300.0), 0.3, 0.01)));
   int count = 0;
-  while (disturbed(d.update(49.0, 1.15, 0.01)) && count < 100'000) ++count;
+  while (disturbed(d.update(fieldOf(49.0), 1.15, 0.01)) && count < 100'000) ++count;
   return count;
 }
 
@@ -265,31 +264,31 @@ TEST(MagDisturbance, AFieldBackWhereItWasBeforeAPassingMagnetIsCleanAgainAfterAS
   // measured from there.
   MagDisturbanceDetector d = returningDetector();
   samplesDisturbedAfterASpike(d, 5.0);
-  for (int i = 0; i < 100; ++i) EXPECT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
-  EXPECT_TRUE(disturbed(d.update(54.0, 1.15, 0.01)));
+  for (int i = 0; i < 100; ++i) EXPECT_FALSE(disturbed(d.update(fieldOf(49.0), 1.15, 0.01)));
+  EXPECT_TRUE(disturbed(d.update(fieldOf(54.0), 1.15, 0.01)));
   EXPECT_NEAR(d.normDeviation(), 5.0, 0.01);
 }
 
 TEST(MagDisturbance, ALastingChangeOrAShortCrossingOfTheOldFieldWaitsForTheLowPasses) {
   MagDisturbanceDetector d = returningDetector();
-  for (int i = 0; i < 500; ++i) ASSERT_FALSE(disturbed(d.update(49.0, 1.15, 0.01)));
+  for (int i = 0; i < 500; ++i) ASSERT_FALSE(disturbed(d.update(fieldOf(49.0), 1.15, 0.01)));
   // A magnet attached: the strength moves to 70 µT and stays; as the sensor turns it passes
   // through the old strength and dip for 0.4 s now and then.
   int disturbed_samples = 0;
-  for (int i = 0; i < 300; ++i) disturbed_samples += disturbed(d.update(70.0, 1.15, 0.01)) ? 1 : 0;
-  for (int i = 0; i < 40; ++i) disturbed_samples += disturbed(d.update(49.0, 1.15, 0.01)) ? 1 : 0;
-  for (int i = 0; i < 300; ++i) disturbed_samples += disturbed(d.update(70.0, 1.15, 0.01)) ? 1 : 0;
+  for (int i = 0; i < 300; ++i) disturbed_samples += disturbed(d.update(fieldOf(70.0), 1.15, 0.01)) ? 1 : 0;
+  for (int i = 0; i < 40; ++i) disturbed_samples += disturbed(d.update(fieldOf(49.0), 1.15, 0.01)) ? 1 : 0;
+  for (int i = 0; i < 300; ++i) disturbed_samples += disturbed(d.update(fieldOf(70.0), 1.15, 0.01)) ? 1 : 0;
   // The crossing is back at the old field for less than 0.5 s: no return, all disturbed.
   EXPECT_GT(disturbed_samples, 500);
   // The lasting change is accepted once the low-pass has followed it, as without the return.
   int more = 0;
-  while (disturbed(d.update(70.0, 1.15, 0.01)) && more < 100'000) ++more;
+  while (disturbed(d.update(fieldOf(70.0), 1.15, 0.01)) && more < 100'000) ++more;
   EXPECT_LT(more, 1000);
 }
 
 TEST(MagDisturbance, FirstSampleIsNotDisturbed) {
   MagDisturbanceDetector d = lowPassDetector();
-  EXPECT_FALSE(disturbed(d.update(500.0, -1.0, 0.01)));
+  EXPECT_FALSE(disturbed(d.update(fieldOf(500.0), -1.0, 0.01)));
   EXPECT_EQ(d.normDeviation(), 0.0);
   EXPECT_EQ(d.dipDeviation(), 0.0);
 }

@@ -71,11 +71,10 @@ class MagDisturbanceDetector {
         direction_gyro_frame_(p.time_constant_s),
         direction_sensor_axes_(p.time_constant_s) {}
 
-  MagDisturbance update(double field_norm_uT, double dip_rad, double dt_s);
-
-  // The same from the field vector (sensor axes), with the strength test's allowance for the
-  // angle the sensor has turned against the field. Call advance() with every gyro increment,
-  // also between field samples, and restart() after a gap in the samples.
+  // The tests for one field sample (sensor axes) and its dip against gravity, with the
+  // strength test's allowance for the angle the sensor has turned against the field. Call
+  // advance() with every gyro increment, also between field samples, and restart() after a gap
+  // in the samples.
   MagDisturbance update(const Vec3& field_uT, double dip_rad, double dt_s);
   void advance(const Quat& gyro_increment) {
     if (p_.residual_hard_iron_uT > 0.0) direction_gyro_frame_.advance(gyro_increment);
