@@ -46,6 +46,7 @@ table() {  # table TITLE -- study arguments
   echo; echo "### $title"; echo
   "$study" "$@" "${anchor_args[@]}" "${sets[@]}" | awk -v anchors="${#anchor_args[@]}" '
     /^side by side/ { side = 1; next }
+    side && /^$/ { side = 0; next }  # the table after it (openings) is not part of this one
     side && /^run / { n = split($0, h, "|"); printf "| run | Hz |"; for (i = 2; i <= n; ++i) { gsub(/ /, "", h[i]); printf " %s plain | %s fitted tot / head / incl |", h[i], h[i] } print ""
                       printf "|---|---:|"; for (i = 2; i <= n; ++i) printf "---:|---:|"; print ""; next }
     side { n = split($0, f, "|"); na = split(f[1], a, " ")

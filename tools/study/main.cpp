@@ -4,7 +4,8 @@
 //   headingd-study broad [--dir DIR] [--rate HZ ...] [--set key=value ...] [--config TOML]
 //   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--accel-lag-s S] [--set ...]
 //   ... --trace FILE  (one run: per-sample diagnostics as CSV)
-//   ... --anchors DIR (VQF and Fusion beside headingd: the drivers built by ../shared/anchors/build.sh)
+//   ... --anchors DIR (VQF and Fusion beside headingd: the drivers built by ../shared/anchors/build.sh;
+//                      then also each filter's fitted heading over the first 25 s and after)
 // The h<2s% column: the share of scored samples whose heading error is within twice the
 // estimator's stated heading 1-sigma (plain errors on simulations, after the fitted alignment
 // on recordings): docs/heading-sigma.md.
@@ -157,6 +158,42 @@ void printReferenceDelays(const std::vector<Row>& rows) {
   }
 }
 
+// The fitted heading apart for the opening of each run and the rest (study::kOpeningS): how
+// fast each filter finds the heading from its start.
+void printOpenings(const std::vector<Row>& rows, const std::vector<double>& rates,
+                   const std::vector<std::string>& names) {
+  std::printf("\nfitted heading (deg): per filter the first %.0f s of the scored samples | after\n", study::kOpeningS);
+  std::printf("%-46s %7s", "run", "Hz");
+  for (const auto& n : names) std::printf(" | %-13s", n.c_str());
+  std::printf("\n");
+  for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+    std::vector<std::array<double, 2>> sums(names.size(), {0, 0});
+    std::vector<std::array<std::size_t, 2>> counts(names.size(), {0, 0});
+    for (std::size_t job = ri; job < rows.size(); job += rates.size()) {
+      const Row& row = rows[job];
+      std::printf("%-46s %7.1f", row.name.c_str(), row.rate_hz);
+      for (std::size_t f = 0; f < names.size(); ++f) {
+        const study::RunScore& s = f == 0 ? row.score : row.anchors[f - 1];
+        const std::array<double, 2> v = {s.aligned_opening_rmse.heading_rad * kDeg,
+                                         s.aligned_after_opening_rmse.heading_rad * kDeg};
+        std::printf(" | %6.2f %6.2f", v[0], v[1]);
+        for (int k = 0; k < 2; ++k) {
+          if (std::isnan(v[k])) continue;  // a run shorter than its opening
+          sums[f][k] += v[k];
+          ++counts[f][k];
+        }
+      }
+      std::printf("\n");
+    }
+    std::printf("OPENING-MEAN %-33s %7.1f", "", rates[ri]);
+    for (std::size_t f = 0; f < names.size(); ++f) {
+      std::printf(" | %6.2f %6.2f", sums[f][0] / static_cast<double>(counts[f][0]),
+                  sums[f][1] / static_cast<double>(counts[f][1]));
+    }
+    std::printf("\n");
+  }
+}
+
 // One filter's figures in the side-by-side table: plain total, then fitted total / heading /
 // inclination (constant earth and body rotations fitted for each filter alone).
 void printSideBySide(const std::vector<Row>& rows, const std::vector<double>& rates,
@@ -186,6 +223,7 @@ void printSideBySide(const std::vector<Row>& rows, const std::vector<double>& ra
     for (const auto& s : sums) std::printf(" | %6.2f %6.2f/%6.2f/%6.2f", s[0] / n, s[1] / n, s[2] / n, s[3] / n);
     std::printf("\n");
   }
+  printOpenings(rows, rates, names);
 }
 
 }  // namespace

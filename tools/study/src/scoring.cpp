@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -91,27 +92,35 @@ std::vector<Quat> alignedEstimates(const Recording& r, const std::vector<Quat>& 
   return aligned;
 }
 
-RunScore score(const Recording& r, const std::vector<Quat>& estimates) {
+RunScore score(const Recording& r, const std::vector<Quat>& estimates, double opening_s) {
   RunScore s;
-  core::RmseAccumulator plain, aligned;
+  core::RmseAccumulator plain, aligned, opening, after_opening;
+  std::int64_t first_scored_ns = 0;
   const std::vector<Quat> fitted = alignedEstimates(r, estimates);
   for (std::size_t i = 0; i < r.size(); ++i) {
     if (!r.moving[i] || !hasTruth(r.truth_nb[i])) continue;
-    ++s.scored;
+    if (s.scored++ == 0) first_scored_ns = r.samples[i].t_ns;
+    core::RmseAccumulator& part =
+        1e-9 * static_cast<double>(r.samples[i].t_ns - first_scored_ns) < opening_s ? opening : after_opening;
     if (!hasTruth(estimates[i])) {
       ++s.failed;
       const double pi = std::numbers::pi;
       plain.add({pi, pi, pi});
       aligned.add({pi, pi, pi});
+      part.add({pi, pi, pi});
       continue;
     }
     const auto e = core::orientationError(estimates[i], core::nedToEnu(r.truth_nb[i]));
     plain.add(e);
-    aligned.add(core::orientationError(fitted[i], core::nedToEnu(r.truth_nb[i])));
+    const auto e_fitted = core::orientationError(fitted[i], core::nedToEnu(r.truth_nb[i]));
+    aligned.add(e_fitted);
+    part.add(e_fitted);
     s.max_inclination_rad = std::max(s.max_inclination_rad, e.inclination_rad);
   }
   s.rmse = plain.rmse();
   s.aligned_rmse = aligned.rmse();
+  s.aligned_opening_rmse = opening.rmse();
+  s.aligned_after_opening_rmse = after_opening.rmse();
   return s;
 }
 

@@ -26,14 +26,25 @@ std::vector<core::OrientationError> perSampleErrors(const Recording& r, const st
 // Markley et al. 2007), and the estimates with them applied.
 std::vector<core::Quat> alignedEstimates(const Recording& r, const std::vector<core::Quat>& estimates);
 
+// The opening of a recording that the side-by-side table scores apart (s): the time a
+// filter takes to find the heading from a start in motion (the shared phone recordings have
+// no rest; a magnetometer observer with a 10-15 s time constant converges in about twice that).
+inline constexpr double kOpeningS = 25.0;
+
 struct RunScore {
   core::OrientationError rmse{};          // BROAD's, over the scored samples
   core::OrientationError aligned_rmse{};  // the same after alignedEstimates
+  // aligned_rmse over the scored samples of the opening (less than opening_s after the first
+  // scored sample) and over those after it: a filter that converges slowly from its start
+  // shows it in the first (NaN where a part has no samples).
+  core::OrientationError aligned_opening_rmse{};
+  core::OrientationError aligned_after_opening_rmse{};
   double max_inclination_rad = 0.0;       // over the scored samples
   std::size_t scored = 0;
   std::size_t failed = 0;  // scored samples without an estimate (counted as 180°)
 };
-RunScore score(const Recording& r, const std::vector<core::Quat>& estimates);
+// opening_s: where aligned_rmse is split into its opening and the rest.
+RunScore score(const Recording& r, const std::vector<core::Quat>& estimates, double opening_s = kOpeningS);
 
 // Share (0-1) of the scored samples whose heading error lies within k of the stated 1-sigma
 // (sigmas_rad: the estimator's heading_sigma_rad after each sample); NaN with none scored.
