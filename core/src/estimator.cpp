@@ -199,6 +199,13 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
                                        clipped_share / share, clip_sigma * clip_sigma)
                   : ekf_.updateGravity(gravity_measurement, out_.gravity_noise_m_s2, p_.gravity_m_s2);
   tilt_seconds_ += dt_s;
+  // The start: the attitude came from one accelerometer sample, which in motion may be off by
+  // tens of degrees, and the EKF would take its own time constant to leave it (at the level of
+  // running, several). The prefilter starts as the running mean of gravity in the gyro frame,
+  // better from its second sample on; for one EKF time constant the tilt is that mean.
+  if (tilt_seconds_ < ekfTiltTimeConstantS(p_) && gravity_measurement.norm() > 0.1 * p_.gravity_m_s2) {
+    ekf_.setAttitude(tiltedTo(ekf_.attitude(), -gravity_measurement));
+  }
   // The turn measures the bias once the tilt has settled from its start (the first turns
   // correct the start, not a drift).
   bias_.addTiltCorrection(tilt_turn, ekf_.attitude(), dt_s,

@@ -118,4 +118,11 @@ Vec3 turnedBySmallAngle(const Vec3& v, const Vec3& phi) {
   return v + once + 0.5 * phi.cross(once);
 }
 
+Quat tiltedTo(const Quat& q_nb, const Vec3& down_b) {
+  // q ⊗ r with r taking down_b onto the down q_nb has in body axes: then q ⊗ r maps down_b
+  // onto NED down.
+  const Vec3 down_now = q_nb.conjugate() * Vec3::UnitZ();
+  return (q_nb * Quat::FromTwoVectors(down_b, down_now)).normalized();
+}
+
 }  // namespace headingd::core

@@ -229,5 +229,24 @@ TEST(Quaternion, NedToEnuComposesWithTheAttitude) {
   }
 }
 
+TEST(Quaternion, TiltedToSetsTheTiltFromADownDirectionAndKeepsTheHeading) {
+  Random rng(91);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Quat q = test::fromYawPitchRoll(rng.uniform(-3.0, 3.0), rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6));
+    const Quat target = test::fromYawPitchRoll(yawZyx(q), rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6));
+    const Vec3 down_b = target.conjugate() * Vec3::UnitZ();
+    const Quat tilted = tiltedTo(q, 7.0 * down_b);  // any length
+    EXPECT_NEAR(tilted.norm(), 1.0, 1e-12);
+    EXPECT_LT(test::angleBetween(Vec3(tilted * down_b), Vec3::UnitZ()), 1e-9);
+    // The heading moves only in second order of the tilt's change (up to 0.85 rad here).
+    EXPECT_LT(test::angleDifference(yawZyx(tilted), yawZyx(q)), 0.2) << trial;
+  }
+  // A small change of tilt leaves the heading within a small fraction of it.
+  const Quat q = test::fromYawPitchRoll(1.0, 0.1, 0.2);
+  const Quat target = test::fromYawPitchRoll(1.0, 0.12, 0.19);
+  const Quat tilted = tiltedTo(q, target.conjugate() * Vec3::UnitZ());
+  EXPECT_LT(test::angleDifference(yawZyx(tilted), 1.0), 0.002);
+}
+
 }  // namespace
 }  // namespace headingd::core

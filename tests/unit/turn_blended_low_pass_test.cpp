@@ -118,7 +118,7 @@ TEST(SteadyTurnWeight, ASensorTurnedInPlaceIsNoBend) {
 
 TEST(TurnBlendedLowPass, WithoutTheLongTimeConstantItIsTheGyroFrameLowPass) {
   TurnBlendedLowPass blended(2.0, 0.0);
-  GyroFrameLowPass plain(2.0);
+  GyroFrameLowPass plain(2.0, GyroFrameStart::kRunningMean);  // both start as the running mean
   test::Random rng(11);
   for (int i = 0; i < 500; ++i) {
     const Vec3 gyro = rng.vector(-3.0, 3.0);

@@ -401,12 +401,17 @@ struct EstimatorParams {
   double bias_max_rad_s = 0.1;
 };
 
-// How long the tilt takes to follow a quiet accelerometer: the prefilter's time
-// constant plus the EKF's. The EKF's, in steady state, is 2 σ_a / (g σ_ω) for a gravity
-// noise σ_a and a rate noise σ_ω per sample (the tilt's random walk of (σ_ω dt / 2)² per
-// sample against σ_a / g per sample): independent of the sample rate.
+// How long the EKF takes to follow its gravity measurement, in steady state: 2 σ_a / (g σ_ω)
+// for a gravity noise σ_a and a rate noise σ_ω per sample (the tilt's random walk of
+// (σ_ω dt / 2)² per sample against σ_a / g per sample): independent of the sample rate.
+inline double ekfTiltTimeConstantS(const EstimatorParams& p) {
+  return 2.0 * p.accel_noise_m_s2 / (p.gravity_m_s2 * p.gyro_noise_rad_s);
+}
+
+// How long the tilt takes to follow a quiet accelerometer: the prefilter's time constant
+// plus the EKF's.
 inline double tiltTimeConstantS(const EstimatorParams& p) {
-  return p.accel_prefilter_time_constant_s + 2.0 * p.accel_noise_m_s2 / (p.gravity_m_s2 * p.gyro_noise_rad_s);
+  return p.accel_prefilter_time_constant_s + ekfTiltTimeConstantS(p);
 }
 
 }  // namespace headingd::core

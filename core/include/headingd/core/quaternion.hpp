@@ -67,6 +67,11 @@ Vec3 turnedBySmallAngle(const Vec3& v, const Vec3& phi);
 // Rotation by angle_rad about NED down (a heading change seen from above, clockwise positive).
 Quat headingRotation(double angle_rad);
 
+// q_nb turned by the smallest rotation that makes NED down, seen in body axes, point along
+// down_b (any length): the tilt set from a measured gravity direction, the heading kept to
+// first order (the rotation's axis is horizontal).
+Quat tiltedTo(const Quat& q_nb, const Vec3& down_b);
+
 // Wraps an angle to (-π, π].
 double wrapAngle(double angle_rad);
 

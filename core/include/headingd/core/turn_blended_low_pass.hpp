@@ -77,10 +77,14 @@ class SteadyTurnWeight {
 };
 
 // y₀ and y₁ and their blend. Off (the raw sample through) when τ₀ is 0; y₀ alone when τ₁ is 0.
+// Both start as the running mean of their samples (gyro_frame_low_pass.hpp): a recording that
+// starts in motion (a phone taken out running) otherwise carries its first sample's
+// accelerations for seconds (the shared iPhone 4S running in the hand: the tilt 18° off two
+// seconds in, where VQF, whose low-pass starts the same way, is 4° off).
 class TurnBlendedLowPass {
  public:
   TurnBlendedLowPass(double time_constant_s, double turning_time_constant_s)
-      : short_(time_constant_s),
+      : short_(time_constant_s, GyroFrameStart::kRunningMean),
         long_(time_constant_s > 0.0 ? turning_time_constant_s : 0.0, GyroFrameStart::kRunningMean),
         blended_(time_constant_s > 0.0 && turning_time_constant_s > 0.0) {}
 
