@@ -92,6 +92,8 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   }
   c.lcm.publish_imu = lcm.boolean("publish_imu", c.lcm.publish_imu);
   c.lcm.publish_gps = lcm.boolean("publish_gps", c.lcm.publish_gps);
+  c.lcm.send_queue_bytes = static_cast<std::size_t>(
+      lcm.integer("send_queue_bytes", static_cast<std::int64_t>(c.lcm.send_queue_bytes), 64 << 10, 1 << 30));
   lcm.rejectUnknownKeys();
 
   c.estimator = core::parseEstimatorTable(doc["estimator"].as_table(), source);

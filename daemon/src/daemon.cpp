@@ -99,11 +99,15 @@ void Daemon::startRecorder() {
   }
 }
 
+static_assert(kDefaultSendQueueBytes == LcmPublisher::kDefaultQueueBytes,
+              "[lcm] send_queue_bytes defaults to the publisher's own queue size");
+
 void Daemon::start() {
   realtime_ = std::make_unique<RealtimeSettings>(config_.realtime);
   realtime_->lockMemory();
   publisher_ = std::make_unique<LcmPublisher>(config_.lcm.url,
-                                              RepeatLimiter(config_.log.repeat_burst, config_.log.repeat_interval_s));
+                                              RepeatLimiter(config_.log.repeat_burst, config_.log.repeat_interval_s),
+                                              config_.lcm.send_queue_bytes);
   // A HEADING per IMU sample is asked for its latency: sent at once, on the estimator thread.
   publisher_->setSendInline(config_.publish_on_imu);
   publisher_->start([this] {

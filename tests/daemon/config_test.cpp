@@ -158,6 +158,8 @@ TEST_F(DaemonConfigErrors, ChannelsMustDifferAndBeNames) {
   EXPECT_NE(space.find(at(2) + "[lcm] status_channel"), std::string::npos) << space;
   const std::string url = errorOf(dir, "[lcm]\nurl = \"http://x\"\n");
   EXPECT_NE(url.find(at(2) + "[lcm] url: 'http://x': expected an LCM URL"), std::string::npos) << url;
+  const std::string queue = errorOf(dir, "[lcm]\nsend_queue_bytes = 1000\n");
+  EXPECT_NE(queue.find(at(2) + "[lcm] send_queue_bytes"), std::string::npos) << queue;
 }
 
 TEST_F(DaemonConfigErrors, MonotonicTimeNeedsRealTimeSpeed) {
@@ -217,6 +219,7 @@ TEST(DaemonConfig, ShippedDefaultsFileMatchesTheCompiledDefaults) {
   EXPECT_EQ(shipped.lcm.status_channel, d.lcm.status_channel);
   EXPECT_EQ(shipped.lcm.publish_imu, d.lcm.publish_imu);
   EXPECT_EQ(shipped.lcm.publish_gps, d.lcm.publish_gps);
+  EXPECT_EQ(shipped.lcm.send_queue_bytes, d.lcm.send_queue_bytes);
   EXPECT_EQ(shipped.log.level, d.log.level);
   EXPECT_EQ(shipped.log.file, d.log.file);
   EXPECT_EQ(shipped.log.repeat_burst, d.log.repeat_burst);

@@ -25,6 +25,9 @@ struct RealtimeConfig {
   bool lock_memory = true;         // mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT)
 };
 
+// LcmPublisher::kDefaultQueueBytes (daemon.cpp checks that they agree).
+inline constexpr std::size_t kDefaultSendQueueBytes = 1 << 20;
+
 struct LcmConfig {
   std::string url = "udpm://239.255.76.67:7667?ttl=0";
   std::string heading_channel = "HEADING";
@@ -34,6 +37,9 @@ struct LcmConfig {
   std::string status_channel = "STATUS";
   bool publish_imu = true;
   bool publish_gps = true;
+  // The queue between the estimator thread and the LCM sender thread (bytes): what does not
+  // fit while the sender is behind is not published, and counted (lcm_publisher.hpp).
+  std::size_t send_queue_bytes = kDefaultSendQueueBytes;
 };
 
 struct LogConfig {
