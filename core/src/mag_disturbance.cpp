@@ -17,13 +17,13 @@ void MagDisturbanceDetector::restart() {
 
 MagDisturbance MagDisturbanceDetector::update(const Vec3& field_uT, double dip_rad, double dt_s) {
   const double norm = field_uT.norm();
-  has_directions_ = p_.residual_hard_iron_uT > 0.0 && norm > 0.0;
-  if (has_directions_) {
+  const bool has_directions = p_.residual_hard_iron_uT > 0.0 && norm > 0.0;
+  if (has_directions) {
     const Vec3 direction = field_uT / norm;
     direction_turning_ = direction_gyro_frame_.add(direction, dt_s);
     direction_still_ = direction_sensor_axes_.update(direction, dt_s);
   }
-  return test(norm, dip_rad, dt_s);
+  return test(norm, dip_rad, dt_s, has_directions);
 }
 
 double MagDisturbanceDetector::turnedAgainstField() const {
@@ -32,7 +32,7 @@ double MagDisturbanceDetector::turnedAgainstField() const {
   return sin_angle > 0.0 || cos_angle > 0.0 ? std::atan2(sin_angle, cos_angle) : 0.0;
 }
 
-MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad, double dt_s) {
+MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad, double dt_s, bool has_directions) {
   // Deviations are taken against the low-pass *before* this sample enters it.
   norm_deviation_ = norm_lp_.initialised() ? std::abs(field_norm_uT - norm_lp_.value()) : 0.0;  // eq. 4.5
   dip_deviation_ = dip_lp_.initialised() ? std::abs(dip_rad - dip_lp_.value()) : 0.0;
@@ -43,7 +43,7 @@ MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad
   double norm_threshold = norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT);
   // The allowance, measured only where it may decide (an angle costs an atan2).
   turned_rad_ = 0.0;
-  if (has_directions_ && norm_deviation_ > norm_threshold) {
+  if (has_directions && norm_deviation_ > norm_threshold) {
     turned_rad_ = turnedAgainstField();
     norm_threshold += p_.residual_hard_iron_uT * turned_rad_;
   }

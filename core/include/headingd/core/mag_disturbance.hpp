@@ -91,8 +91,8 @@ class MagDisturbanceDetector {
   double dipDeviation() const { return dip_deviation_; }
 
  private:
-  // The tests; the strength's allowance from the directions when has_directions_.
-  MagDisturbance test(double field_norm_uT, double dip_rad, double dt_s);
+  // The tests; the strength's allowance from the directions the update just took, if it took them.
+  MagDisturbance test(double field_norm_uT, double dip_rad, double dt_s, bool has_directions);
   double turnedAgainstField() const;
 
   MagDisturbanceParams p_;
@@ -106,7 +106,6 @@ class MagDisturbanceDetector {
   // axes; the angle between them is the sensor's turning against the field.
   GyroFrameLowPass direction_gyro_frame_;
   LowPass<Vec3> direction_sensor_axes_;
-  bool has_directions_ = false;  // the last update brought the field's direction
   Vec3 direction_turning_ = Vec3::Zero(), direction_still_ = Vec3::Zero();
   double turned_rad_ = 0.0;
   double norm_deviation_ = 0.0;
