@@ -189,6 +189,13 @@ Mat4 AttitudeEkf::covariance() const {
   return G * T * G.transpose();
 }
 
+Eigen::Matrix2d AttitudeEkf::tiltCovariance() const {
+  // q + G t is a turn by 2 t about the NED axes (updateGravityTilt), so angles are 2 t.
+  if (!general_) return 4.0 * tilt_;
+  const Eigen::Matrix<double, 4, 2> G = earthAxisDirections(q_).leftCols<2>();
+  return 4.0 * G.transpose() * P_ * G;
+}
+
 bool AttitudeEkf::allFinite() const {
   return q_.allFinite() && (general_ ? P_.allFinite() : tilt_.allFinite() && std::isfinite(heading_variance_));
 }

@@ -300,5 +300,27 @@ TEST(AttitudeEkf, GravityUpdateLeavesNoHeadingTiltCovariance) {
   }
 }
 
+TEST(AttitudeEkf, TheTiltCovarianceIsPAboutNorthAndEastInRadians) {
+  // q + G t turns the attitude by 2 t about the NED axes, so the tilt's covariance in rad² is
+  // 4 Gᵀ P G over north and east: before the first gravity update (P general) and after (the
+  // tilt form), through predictions and updates.
+  Random rng(26);
+  AttitudeEkf ekf;
+  ekf.setAttitude(test::fromYawPitchRoll(0.8, 0.1, 0.1));
+  ekf.setCovariance(tangentCovariance(ekf.state(), 0.05));
+  const auto expectAboutNorthAndEast = [&ekf](int step) {
+    const Eigen::Matrix<double, 4, 3> g = nedAxisDirections(ekf.state());
+    const Eigen::Matrix2d expected = 4.0 * (g.transpose() * ekf.covariance() * g).topLeftCorner<2, 2>();
+    EXPECT_LT((ekf.tiltCovariance() - expected).norm(), 1e-12 * expected.norm()) << step;
+  };
+  expectAboutNorthAndEast(-1);
+  EXPECT_NEAR(ekf.tiltCovariance()(0, 0), 4.0 * 0.05 * 0.05, 1e-15);
+  for (int i = 0; i < 20; ++i) {
+    ekf.predict(rng.vector(-1.0, 1.0), 0.01, 0.004);
+    ekf.updateGravity(gravityReading(test::fromYawPitchRoll(0.7, 0.2, 0.0)) + rng.gaussian(0.1), 0.5, kG);
+    expectAboutNorthAndEast(i);
+  }
+}
+
 }  // namespace
 }  // namespace headingd::core

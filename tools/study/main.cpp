@@ -82,15 +82,18 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
          "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,"
          "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
-         "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms\n";
+         "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms,"
+         "tilt_sigma_deg\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
-  std::vector<double> rate_sigmas;
+  std::vector<double> rate_sigmas, tilt_sigmas;
   std::vector<std::pair<double, double>> accel_delays;  // the regression's estimate and sigma
   const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
     outputs.push_back(e.output());
     accel_delays.emplace_back(e.accelDelay().estimateS(), e.accelDelay().sigmaS());
     rate_sigmas.push_back(e.headingUncertainty().rateSigmaRadS());
+    // tilt_sigma_deg: the EKF's own 1-sigma of the tilt, √ of its covariance about north plus east.
+    tilt_sigmas.push_back(std::sqrt(e.ekf().tiltCovariance().trace()));
     still_blocks.push_back(e.counters().bias_still_blocks);
     restores.push_back(e.counters().mag_heading_restores);
   });
@@ -105,7 +108,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDeg; };
     std::snprintf(line, sizeof line,
                   "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f\n",
+                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
@@ -115,7 +118,8 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   o.heading_sigma_rad * kDeg, o.mag_innovation_rad * kDeg, o.mag_gain, rate_sigmas[i] * kDeg,
                   o.heading_redefined ? 1 : 0, o.head_height, wrapped_deg(o.heading_rad - t.yaw_rad),
                   wrapped_deg(o.yaw_rad - t.yaw_rad), 1e3 * o.vertical_rate_correction_rad_s, 1e3 * o.mag_lag_s,
-                  1e3 * o.accel_lag_s, 1e3 * accel_delays[i].first, 1e3 * accel_delays[i].second);
+                  1e3 * o.accel_lag_s, 1e3 * accel_delays[i].first, 1e3 * accel_delays[i].second,
+                  tilt_sigmas[i] * kDeg);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());

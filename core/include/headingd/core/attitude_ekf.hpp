@@ -47,6 +47,8 @@ class AttitudeEkf {
   const Vec4& state() const { return q_; }
   // P of eqs. 3.3 and 3.7b in the 4-D space of q (built from the tilt form once there is one).
   Mat4 covariance() const;
+  // The covariance of the attitude's error about NED north and east (rad²): the tilt's.
+  Eigen::Matrix2d tiltCovariance() const;
   void setCovariance(const Mat4& P) {
     P_ = P;
     general_ = true;
