@@ -64,7 +64,7 @@ Estimator::Estimator(const EstimatorParams& params)
                         p_.mag_max_reference_dip_deviation_rad, p_.mag_back_to_before_s,
                         p_.mag_residual_hard_iron_uT}),
       heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
-                            p_.bias_walk_rad_s_per_sqrt_s}),
+                            p_.bias_walk_rad_s_per_sqrt_s, p_.heading_field_set_aside_share}),
       mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}),
       accel_delay_({p_.accel_delay_max_s, p_.accel_delay_time_constant_s, p_.accel_delay_apply_below_sigma_s,
                     kAccelDelayMinSpanS, /*repeats_are_holds=*/false}),
@@ -261,6 +261,7 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate
   if (out_.mag_disturbed) {
     ++mag_disturbed_;
     out_.mag_innovation_rad = m.innovation_rad;
+    if (heading_aligned_) heading_uncertainty_.observeSetAside(m.innovation_rad, dt_s);
     if (onset && heading_aligned_ && heading_corrections_.oldestAgeS() <= p_.mag_restore_max_age_s) {
       restoreGyroHeading();
     }

@@ -1,5 +1,6 @@
 #include "headingd/core/heading_uncertainty.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -52,7 +53,8 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance) {
   }
   // u ← φ u + w, φ = exp(-dt/T), var w = (1 - φ²) σ_u².
   const double phi = field_decay_(dt_s);
-  const double steady = p_.field_sigma_rad * p_.field_sigma_rad + innovation_variance_;
+  const double steady =
+      p_.field_sigma_rad * p_.field_sigma_rad + innovation_variance_ + p_.set_aside_share * set_aside_variance_;
   if (!field_started_) {
     P_(kU, kU) = steady;  // the first sample: u in its steady state
     field_started_ = true;
@@ -64,6 +66,7 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance) {
 }
 
 void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
+  set_aside_variance_ -= (1.0 - field_decay_(dt_s)) * set_aside_variance_;  // a used sample: 0
   // Both averages start as running means: seeded with the first sample instead, one
   // magnetometer sample's noise (5-10 deg on a consumer part) stood for the innovations' spread
   // for a whole field_correlation_s and lifted the sigma of every run for a minute. And the
@@ -77,6 +80,12 @@ void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
   const double squared = innovation_mean_rad_ * innovation_mean_rad_;
   innovation_variance_ +=
       startedLowPassWeight(spread_seen_s, dt_s, 1.0 - field_decay_(dt_s)) * (squared - innovation_variance_);
+}
+
+void HeadingUncertainty::observeSetAside(double innovation_rad, double dt_s) {
+  // Capped: a field turned by more than 90° says no more about the heading than one at 90°.
+  const double capped = std::min(std::abs(innovation_rad), 0.5 * std::numbers::pi);
+  set_aside_variance_ += (1.0 - field_decay_(dt_s)) * (capped * capped - set_aside_variance_);
 }
 
 void HeadingUncertainty::correct(double gain, double rate_gain) {

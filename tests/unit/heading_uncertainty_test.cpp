@@ -157,5 +157,37 @@ TEST(HeadingUncertainty, NoSingleEarlySampleStandsForTheFieldsSpread) {
   EXPECT_LT(one_noisy.sigmaRad(), 1.05 * clean.sigmaRad());
 }
 
+TEST(HeadingUncertainty, WhereTheTestsSetMuchOfTheFieldAsideTheRestCountsForLess) {
+  // A stretch where half the field samples are set aside, 30 deg off, and the others agree
+  // with the heading (it has followed them): with a share of 0.25 the field's error variance
+  // grows from 1 deg² by 0.25 × 0.5 × 30² deg², and the heading's with it (the same schedule
+  // of gains: about the same ratio, √113.5; measured 10.1); with the share 0 the set-aside
+  // samples change nothing; and once the field is clean for several correlation times the
+  // sigma is back.
+  const HeadingUncertaintyParams off{1.0 * kDeg, 10.0, 0.0, 0.0};
+  HeadingUncertaintyParams on = off;
+  on.set_aside_share = 0.25;
+  HeadingUncertainty plain(off), ignoring(off), counting(on);
+  const double gain = magObserverGain(kDt, 15.0);
+  const auto stepAll = [&](bool set_aside) {
+    for (HeadingUncertainty* h : {&plain, &ignoring, &counting}) h->predict(kDt, 1e-8);
+    plain.observeInnovation(0.0, kDt);
+    plain.correct(gain, 0.0);
+    for (HeadingUncertainty* h : {&ignoring, &counting}) {
+      if (set_aside) {
+        h->observeSetAside(30.0 * kDeg, kDt);
+      } else {
+        h->observeInnovation(0.0, kDt);
+        h->correct(gain, 0.0);
+      }
+    }
+  };
+  for (int i = 0; i < 20000; ++i) stepAll(i % 2 == 0);  // 200 s: 20 correlation times
+  EXPECT_NEAR(counting.sigmaRad() / ignoring.sigmaRad(), std::sqrt(1.0 + 0.25 * 0.5 * 900.0), 1.0);
+  EXPECT_LT(ignoring.sigmaRad(), 1.5 * plain.sigmaRad());
+  for (int i = 0; i < 20000; ++i) stepAll(false);
+  EXPECT_LT(counting.sigmaRad(), 1.05 * plain.sigmaRad());
+}
+
 }  // namespace
 }  // namespace headingd::core

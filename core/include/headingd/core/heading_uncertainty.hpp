@@ -13,7 +13,11 @@
 //      heading, the tilt error through the dip). A first-order Gauss-Markov process: it
 //      changes as the person moves on and turns. Its variance is a floor (field_sigma_rad) plus
 //      what the innovations show of it (observeInnovation): a field that disagrees with the
-//      gyro from place to place says that its errors are larger here.
+//      gyro from place to place says that its errors are larger here. Plus a share of what the
+//      samples the disturbance tests set aside show (observeSetAside): the tests flag a wrong
+//      field only part of the time it is wrong (a building's steel: 20-60 % of it in the
+//      simulator), and the samples they let through there carry part of the same error, which
+//      their innovations do not show once the heading has followed them.
 // A field sample used with gain K (eq. 4.2) makes e ← (1 - K) e + K u; the observer's
 // integral term, when on, makes b ← b + g (u - e) with its own gain g. Before the first field
 // sample the heading is unknown: σ is that of an angle uniform on the circle (π/√3).
@@ -28,6 +32,9 @@ struct HeadingUncertaintyParams {
   double field_sigma_rad = 0.0;             // σ of u at least (steady state)
   double field_correlation_s = 1.0;         // u's correlation time, and the innovations' average
   double rate_walk_rad_s_per_sqrt_s = 0.0;  // b wanders as the gyro bias does
+  // Share of the set-aside samples' mean squared innovation (times their share of the field
+  // samples, both over field_correlation_s) added to u's steady-state variance.
+  double set_aside_share = 0.0;
 };
 
 class HeadingUncertainty {
@@ -45,6 +52,10 @@ class HeadingUncertainty {
   // mean over a second (the magnetometer's white noise averaged away) is squared and
   // averaged over field_correlation_s; that variance adds to u's steady state.
   void observeInnovation(double innovation_rad, double dt_s);
+  // A field sample the disturbance tests set aside, with its innovation (capped at 90°): how
+  // wrong the field is where the tests fire. Averaged with the used samples (which count as
+  // zero) over field_correlation_s.
+  void observeSetAside(double innovation_rad, double dt_s);
 
   // A field sample corrected the heading by `gain` × innovation (eq. 4.2; gain 1 sets it),
   // and the integral term moved the vertical rate by `rate_gain` × innovation (0: off).
@@ -66,6 +77,7 @@ class HeadingUncertainty {
   double innovation_seen_s_ = 0.0;    // of innovations observed
   double innovation_mean_rad_ = 0.0;  // over about a second
   double innovation_variance_ = 0.0;  // of that mean, over field_correlation_s
+  double set_aside_variance_ = 0.0;   // set-aside innovations², used samples as 0, over it too
 };
 
 }  // namespace headingd::core
