@@ -220,6 +220,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   mag_sample_dt_s_ += dt_s;
   if (mag_usable) {
     correctHeading(mag_prefilter_.add(mag_now, mag_sample_dt_s_), dt_s, turn_rate_rad_s);
+    if (out_.mag_used || out_.mag_disturbed) vertical_rate_error_.fieldSample(out_.mag_disturbed, mag_sample_dt_s_);
     mag_sample_dt_s_ = 0.0;
   }
 

@@ -54,6 +54,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"mag_rate_error_time_constant_s", &P::mag_rate_error_time_constant_s, 0.0, 1e5, "s"},
       {"mag_rate_error_max_turn_rad_s", &P::mag_rate_error_max_turn_rad_s, 0.0, 1e3, "rad/s"},
       {"mag_rate_error_max_reference_age_s", &P::mag_rate_error_max_reference_age_s, 0.0, 1e5, "s"},
+      {"mag_rate_error_max_set_aside_share", &P::mag_rate_error_max_set_aside_share, 0.0, 1.0, "1"},
       {"mag_rate_error_settle_s", &P::mag_rate_error_settle_s, 0.0, 1e5, "s"},
       {"mag_rate_error_steady_heading_rad", &P::mag_rate_error_steady_heading_rad, 0.0, 3.2, "rad"},
       {"heading_field_sigma_rad", &P::heading_field_sigma_rad, 0.0, 3.2, "rad"},

@@ -11,14 +11,16 @@ VerticalRateError::VerticalRateError(const EstimatorParams& p)
       observer_time_constant_s_(p.mag_heading_time_constant_s),
       max_turn_rad_s_(p.mag_rate_error_max_turn_rad_s),
       max_reference_age_s_(p.mag_rate_error_max_reference_age_s),
+      max_set_aside_share_(p.mag_rate_error_max_set_aside_share),
       settle_s_(p.mag_rate_error_settle_s),
       steady_heading_rad_(p.mag_rate_error_steady_heading_rad),
       max_rate_rad_s_(p.bias_max_rad_s),
-      reference_age_s_(std::numeric_limits<double>::infinity()) {}
+      reference_age_s_(std::numeric_limits<double>::infinity()),
+      set_aside_alpha_(p.mag_rate_error_settle_s) {}
 
 void VerticalRateError::trackSteadyHeading(double dt_s, const Quat& q_nb) {
-  // Before the first fix advance() returns early: nothing can be learned, and no atan2 per
-  // sample is spent on a recording without GPS.
+  // When only a fix can show a clean field, advance() returns early before the first one:
+  // nothing can be learned, and no atan2 per sample is spent.
   steady_s_ += dt_s;
   const double heading_rad = yawZyx(q_nb);
   if (!(std::abs(wrapAngle(heading_rad - steady_anchor_rad_)) <= steady_heading_rad_)) {
@@ -31,9 +33,22 @@ bool VerticalRateError::referenceIsRecent() const {
   return max_reference_age_s_ <= 0.0 || reference_age_s_ <= max_reference_age_s_;
 }
 
+void VerticalRateError::fieldSample(bool set_aside, double period_s) {
+  if (time_constant_s_ <= 0.0 || !(period_s > 0.0)) return;
+  field_seen_s_ += period_s;
+  // The running mean of the shares at first (eq. 2.13 once that weighs less): a few clean
+  // samples at the start are not yet a clean stretch, the steady-heading wait covers that.
+  const double weight = startedLowPassWeight(field_seen_s_, period_s, 1.0 - set_aside_alpha_(period_s));
+  set_aside_share_ += weight * ((set_aside ? 1.0 : 0.0) - set_aside_share_);
+}
+
+bool VerticalRateError::fieldIsClean() const {
+  return referenceIsRecent() || set_aside_share_ < max_set_aside_share_;
+}
+
 double VerticalRateError::learn(double innovation_rad, double dt_s, double turn_rate_rad_s) {
   if (time_constant_s_ <= 0.0 || turn_rate_rad_s > max_turn_rad_s_ || steady_s_ < settle_s_) return 0.0;
-  if (!referenceIsRecent()) return 0.0;
+  if (!fieldIsClean()) return 0.0;
   // Ki = 1/(τ τ_i): the loop ψ̃'' + ψ̃'/τ + Ki ψ̃ = 0 has damping ratio ½ √(τ_i / τ).
   const double gain = dt_s / (observer_time_constant_s_ * time_constant_s_);
   rate_rad_s_ = std::clamp(rate_rad_s_ + innovation_rad * gain, -max_rate_rad_s_, max_rate_rad_s_);

@@ -207,7 +207,7 @@ struct EstimatorParams {
   // The default is the one better than the term off, or equal, in every class (the worst
   // case, not the mean); the others each lose somewhere. The loop is over-damped (damping ratio
   // ½ √(τ_i / τ) = 1.4): a constant rate error goes with a time constant of about 100 s once
-  // learning. Without GPS (the shared BROAD and phone recordings) the term never learns.
+  // learning.
   double mag_rate_error_time_constant_s = 120.0;
   // ... learned only while the sensor turns slower than this: in a fast turn the innovation
   // says more about the magnetometer's timing against the gyro (phones: 20-40 ms late) than
@@ -223,6 +223,27 @@ struct EstimatorParams {
   // loses 0.58 / 0.25 / 0.13° with τ_i 120 / 300 / 600 s (docs/side-by-side.md, "The opening
   // of a run, and the integral term indoors").
   double mag_rate_error_max_reference_age_s = 5.0;
+  // ... or, without a fix, while the disturbance tests have set aside less than this share of
+  // the field samples, averaged over mag_rate_error_settle_s (0: only with a fix). They flag a
+  // building's field only part of the time it is wrong (20-60 % in the simulator), so where
+  // they have not fired for a while the field is most likely clean, and a recording without
+  // GPS has its rate error taken off too (tests/unit/heading_rate_error_test.cpp: a 10 mrad/s
+  // vertical bias on a 15-minute walk, 8.3° → 0.5° in the last minute). Chosen on the 84
+  // simulator classes (no GPS; fitted total, 6 seeds; the change against 0 in the worst and the
+  // best class, and the sum over all) and the runs with GPS above (urban walk consumer / mems /
+  // phone, true heading):
+  //   0      (fix only)  —                      198.44   5.98 4.40 4.96
+  //   0.01   +0.05 / -0.05                      198.61   5.98 4.40 4.96
+  //   0.02   +0.06 / -0.05                      198.60   5.98 4.40 4.95
+  //   0.05   +0.06 / -0.05                      198.64   5.98 4.40 4.95
+  //   0.1    +0.06 / -0.04                      198.65   5.96 4.40 4.95
+  //   0.2    +0.13 / -0.04 (urban-walk consumer) 198.85  5.96 4.40 4.95
+  //   1      (any field that looks clean)       —        6.12 4.67 5.12
+  // 0.2 begins to learn in the simulated buildings; 0.01-0.1 are alike within 0.06° in every
+  // class (most runs there are too short for the 30 s settle), so the choice is by margin: a
+  // tenth of the least a building is flagged. The §6.3 declination runs and the shared BROAD
+  // and phone recordings do not move at any value (their headings are not steady for 30 s).
+  double mag_rate_error_max_set_aside_share = 0.02;
   // ... and only once the x-axis heading has stayed within mag_rate_error_steady_heading_rad
   // of where it was for mag_rate_error_settle_s: after a turn the innovations show how the
   // field's error differs between the old and the new heading (a calibration's residual hard

@@ -7,9 +7,13 @@
 // A field that is wrong but looks clean makes lasting innovations too, and the rate learned
 // from them outlasts the field. So the term learns only where the innovation is most likely
 // a rate error (estimator_params.hpp has the figures):
-//  - while the World Magnetic Model's field has been set from a GPS fix recently
-//    (mag_rate_error_max_reference_age_s): a receiver with a fix sees the sky, away from the
-//    steel of buildings, and the disturbance tests compare the field with the model's there;
+//  - where the field is known to be clean: the World Magnetic Model's field has been set from
+//    a GPS fix recently (mag_rate_error_max_reference_age_s: a receiver with a fix sees the
+//    sky, away from the steel of buildings, and the disturbance tests compare the field with
+//    the model's there), or, without a fix, the disturbance tests have set aside less than
+//    mag_rate_error_max_set_aside_share of the field samples over about
+//    mag_rate_error_settle_s (they flag a building's field only part of the time it is
+//    wrong, so a stretch where they never fire is one where the field is most likely clean);
 //  - once the heading has stayed within mag_rate_error_steady_heading_rad for
 //    mag_rate_error_settle_s: after a change of heading the innovations show how the field's
 //    error differs between the two headings (a calibration's residual hard iron), which the
@@ -18,6 +22,7 @@
 #include <limits>
 
 #include "headingd/core/estimator_params.hpp"
+#include "headingd/core/low_pass.hpp"
 #include "headingd/core/quaternion.hpp"
 
 namespace headingd::core {
@@ -28,15 +33,23 @@ class VerticalRateError {
 
   // Per sample: time passes; q_nb is the attitude after the gyro's prediction (its x-axis
   // heading is what has to stay steady).
-  // Inline: on a recording without GPS (no fix yet) this is all there is per sample.
+  // Inline: when only a fix can show a clean field and there has been none yet, this is all
+  // there is per sample.
   void advance(double dt_s, const Quat& q_nb) {
     if (time_constant_s_ <= 0.0) return;
     reference_age_s_ += dt_s;
-    if (max_reference_age_s_ > 0.0 && reference_age_s_ == std::numeric_limits<double>::infinity()) return;
+    if (max_set_aside_share_ <= 0.0 && max_reference_age_s_ > 0.0 &&
+        reference_age_s_ == std::numeric_limits<double>::infinity()) {
+      return;
+    }
     trackSteadyHeading(dt_s, q_nb);
   }
   // The World Magnetic Model's field was set from a fix just now.
   void referenceUpdated() { reference_age_s_ = 0.0; }
+  // A field sample `period_s` after the previous one, used or set aside by the disturbance
+  // tests: the share of set-aside samples, weighted by their periods (a magnetometer slower
+  // than the IMU counts by its own rate), averaged over about mag_rate_error_settle_s.
+  void fieldSample(bool set_aside, double period_s);
 
   // After a clean field sample with innovation innovation_rad, once the observer has left its
   // start: learns when every condition above holds. Returns the gain the rate took
@@ -50,12 +63,14 @@ class VerticalRateError {
 
  private:
   bool referenceIsRecent() const;
+  bool fieldIsClean() const;
   void trackSteadyHeading(double dt_s, const Quat& q_nb);
 
   double time_constant_s_;           // τ_i; 0: off
   double observer_time_constant_s_;  // τ
   double max_turn_rad_s_;
   double max_reference_age_s_;       // 0: no fix needed
+  double max_set_aside_share_;       // 0: a fix needed
   double settle_s_;
   double steady_heading_rad_;
   double max_rate_rad_s_;
@@ -63,6 +78,9 @@ class VerticalRateError {
   double reference_age_s_;
   double steady_s_ = 0.0;
   double steady_anchor_rad_ = std::numeric_limits<double>::quiet_NaN();  // none yet
+  LowPassAlpha set_aside_alpha_;
+  double set_aside_share_ = 1.0;  // no field sample yet: not known to be clean
+  double field_seen_s_ = 0.0;
 };
 
 }  // namespace headingd::core
