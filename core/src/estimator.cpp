@@ -219,8 +219,11 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   mag_disturbance_.advance(increment);
   mag_sample_dt_s_ += dt_s;
   if (mag_usable) {
-    correctHeading(mag_prefilter_.add(mag_now, mag_sample_dt_s_), dt_s, turn_rate_rad_s);
-    if (out_.mag_used || out_.mag_disturbed) vertical_rate_error_.fieldSample(out_.mag_disturbed, mag_sample_dt_s_);
+    // The observer's time constants are in seconds: each field sample stands for the time since
+    // the last one (a magnetometer slower than the IMU, in some epochs only), up to a gap.
+    const double field_period_s = std::min(mag_sample_dt_s_, p_.max_sample_gap_s);
+    correctHeading(mag_prefilter_.add(mag_now, mag_sample_dt_s_), field_period_s, turn_rate_rad_s);
+    if (out_.mag_used || out_.mag_disturbed) vertical_rate_error_.fieldSample(out_.mag_disturbed, field_period_s);
     mag_sample_dt_s_ = 0.0;
   }
 
@@ -246,23 +249,23 @@ void Estimator::restoreGyroHeading() {
   ++mag_heading_restores_;
 }
 
-void Estimator::correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate_rad_s) {
+void Estimator::correctHeading(const Vec3& mag_uT, double field_period_s, double turn_rate_rad_s) {
   const auto m = measureMagHeading(ekf_.attitude(), mag_uT, p_.mag_min_horizontal_fraction);
   if (!m.valid) {
     ++mag_no_heading_;
     return;
   }
-  out_.mag_disturbance = mag_disturbance_.update(mag_uT, m.dip_rad, dt_s);
+  out_.mag_disturbance = mag_disturbance_.update(mag_uT, m.dip_rad, field_period_s);
   out_.mag_disturbed = out_.mag_disturbance.any();
   // A disturbance counts once it has lasted mag_restore_confirm_s: single noisy samples must
   // not swap in a heading with seconds of gyro drift.
   const double before = mag_disturbed_seconds_;
-  mag_disturbed_seconds_ = out_.mag_disturbed ? mag_disturbed_seconds_ + dt_s : 0.0;
+  mag_disturbed_seconds_ = out_.mag_disturbed ? mag_disturbed_seconds_ + field_period_s : 0.0;
   const bool onset = before < p_.mag_restore_confirm_s && mag_disturbed_seconds_ >= p_.mag_restore_confirm_s;
   if (out_.mag_disturbed) {
     ++mag_disturbed_;
     out_.mag_innovation_rad = m.innovation_rad;
-    if (heading_aligned_) heading_uncertainty_.observeSetAside(m.innovation_rad, dt_s);
+    if (heading_aligned_) heading_uncertainty_.observeSetAside(m.innovation_rad, field_period_s);
     if (onset && heading_aligned_ && heading_corrections_.oldestAgeS() <= p_.mag_restore_max_age_s) {
       restoreGyroHeading();
     }
@@ -273,15 +276,15 @@ void Estimator::correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate
   // running mean of its measurements instead of leaning on the first, noisy one.
   double gain = 1.0;
   if (heading_aligned_) {
-    mag_seconds_ += dt_s;
-    gain = std::max(magObserverGain(dt_s, p_.mag_heading_time_constant_s), dt_s / mag_seconds_);
+    mag_seconds_ += field_period_s;
+    gain = std::max(magObserverGain(field_period_s, p_.mag_heading_time_constant_s), field_period_s / mag_seconds_);
   }
   // The integral term (PI observer, vertical_rate_error.hpp), once the observer has left its
   // running-mean start.
   const double rate_gain = heading_aligned_ && mag_seconds_ >= p_.mag_heading_time_constant_s
-                               ? vertical_rate_error_.learn(m.innovation_rad, dt_s, turn_rate_rad_s)
+                               ? vertical_rate_error_.learn(m.innovation_rad, field_period_s, turn_rate_rad_s)
                                : 0.0;
-  if (heading_aligned_) heading_uncertainty_.observeInnovation(m.innovation_rad, dt_s);
+  if (heading_aligned_) heading_uncertainty_.observeInnovation(m.innovation_rad, field_period_s);
   heading_uncertainty_.correct(gain, rate_gain);
   heading_aligned_ = true;
   ekf_.turnHeading(gain * m.innovation_rad);

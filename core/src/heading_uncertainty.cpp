@@ -20,7 +20,10 @@ constexpr double kInnovationMeanS = 1.0;
 }  // namespace
 
 HeadingUncertainty::HeadingUncertainty(const HeadingUncertaintyParams& params)
-    : p_(params), field_decay_(params.field_correlation_s), innovation_mean_decay_(kInnovationMeanS) {}
+    : p_(params),
+      field_decay_(params.field_correlation_s),
+      field_sample_decay_(params.field_correlation_s),
+      innovation_mean_decay_(kInnovationMeanS) {}
 
 void HeadingUncertainty::forget() {
   known_ = false;
@@ -66,7 +69,7 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance) {
 }
 
 void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
-  set_aside_variance_ -= (1.0 - field_decay_(dt_s)) * set_aside_variance_;  // a used sample: 0
+  set_aside_variance_ -= (1.0 - field_sample_decay_(dt_s)) * set_aside_variance_;  // a used sample: 0
   // Both averages start as running means: seeded with the first sample instead, one
   // magnetometer sample's noise (5-10 deg on a consumer part) stood for the innovations' spread
   // for a whole field_correlation_s and lifted the sigma of every run for a minute. And the
@@ -79,13 +82,13 @@ void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
   const double spread_seen_s = innovation_seen_s_ - kInnovationMeanS + dt_s;
   const double squared = innovation_mean_rad_ * innovation_mean_rad_;
   innovation_variance_ +=
-      startedLowPassWeight(spread_seen_s, dt_s, 1.0 - field_decay_(dt_s)) * (squared - innovation_variance_);
+      startedLowPassWeight(spread_seen_s, dt_s, 1.0 - field_sample_decay_(dt_s)) * (squared - innovation_variance_);
 }
 
 void HeadingUncertainty::observeSetAside(double innovation_rad, double dt_s) {
   // Capped: a field turned by more than 90° says no more about the heading than one at 90°.
   const double capped = std::min(std::abs(innovation_rad), 0.5 * std::numbers::pi);
-  set_aside_variance_ += (1.0 - field_decay_(dt_s)) * (capped * capped - set_aside_variance_);
+  set_aside_variance_ += (1.0 - field_sample_decay_(dt_s)) * (capped * capped - set_aside_variance_);
 }
 
 void HeadingUncertainty::correct(double gain, double rate_gain) {

@@ -137,7 +137,7 @@ class Estimator {
   void step(const ImuSample& s, double dt_s, bool mag_usable);
   // turn_rate_rad_s: |ω| of this sample, bias taken off (the integral term learns only below
   // mag_rate_error_max_turn_rad_s).
-  void correctHeading(const Vec3& mag_uT, double dt_s, double turn_rate_rad_s);
+  void correctHeading(const Vec3& mag_uT, double field_period_s, double turn_rate_rad_s);
   void restoreGyroHeading();
   // The accelerometer's clipped axes this sample (accel_clipping.hpp) through the same
   // gyro-frame low-pass as its readings (turning: its blend weight, SteadyTurnWeight): their

@@ -48,7 +48,8 @@ class HeadingUncertainty {
   // about the vertical (rate_variance, (rad/s)²), and u decorrelates towards its steady state.
   void predict(double dt_s, double rate_variance);
 
-  // The innovation ψ_mm - ψ of a field sample that was used: what of u the field shows. Its
+  // The innovation ψ_mm - ψ of a field sample that was used, dt_s after the previous field
+  // sample (a magnetometer may be slower than the IMU): what of u the field shows. Its
   // mean over a second (the magnetometer's white noise averaged away) is squared and
   // averaged over field_correlation_s; that variance adds to u's steady state.
   void observeInnovation(double innovation_rad, double dt_s);
@@ -68,7 +69,8 @@ class HeadingUncertainty {
 
  private:
   HeadingUncertaintyParams p_;
-  ExpDecay field_decay_;            // u's, and the innovations' spread's average
+  ExpDecay field_decay_;            // u's, per IMU sample
+  ExpDecay field_sample_decay_;     // the innovations' spread's average, per field sample
   ExpDecay innovation_mean_decay_;  // the innovations' one-second mean
   Eigen::Matrix3d P_ = Eigen::Matrix3d::Zero();  // over (e, b, u)
   bool known_ = false;
