@@ -236,6 +236,18 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   publish(s.t_ns);
 }
 
+bool Estimator::gyroHeadingBeatsAField() const {
+  // The background heading has run on the gyro alone for the older sum's age: its drift over
+  // that time, at the rate error the heading sigma allows about the vertical, must be below the
+  // heading error of a clean field (heading_field_sigma_rad). Where the bias about the vertical
+  // is not known (a phone carried from the start, no rest: that sigma is the bias filter's
+  // prior, tens of mrad/s) the gyro's seconds are worth less than the field's corrections, even
+  // through a disturbance; on the shared phone recordings with magnets such restores cost as
+  // often as they saved (estimator_params.hpp, mag_restore_max_age_s).
+  const double drift_rad = heading_uncertainty_.rateSigmaRadS() * heading_corrections_.oldestAgeS();
+  return drift_rad < p_.heading_field_sigma_rad;
+}
+
 void Estimator::restoreGyroHeading() {
   // Eq. 4.4: the detection lags the start of a disturbance (the field has to move beyond
   // the thresholds first), and the observer has been pulling the heading towards the bad
@@ -266,7 +278,8 @@ void Estimator::correctHeading(const Vec3& mag_uT, double field_period_s, double
     ++mag_disturbed_;
     out_.mag_innovation_rad = m.innovation_rad;
     if (heading_aligned_) heading_uncertainty_.observeSetAside(m.innovation_rad, field_period_s);
-    if (onset && heading_aligned_ && heading_corrections_.oldestAgeS() <= p_.mag_restore_max_age_s) {
+    if (onset && heading_aligned_ && heading_corrections_.oldestAgeS() <= p_.mag_restore_max_age_s &&
+        gyroHeadingBeatsAField()) {
       restoreGyroHeading();
     }
     return;  // K = 0: the heading runs on the gyro (eq. 4.3)

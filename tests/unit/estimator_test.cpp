@@ -526,5 +526,35 @@ TEST(Estimator, RestoresTheBackgroundHeadingWhenADisturbanceIsConfirmed) {
   EXPECT_GT(without, 1.0 * kDeg);       // measured 1.67°: the pull before detection stays
 }
 
+// The same door, but the gyro's bias was never learned (no rest test: a phone carried from the
+// start): the heading sigma allows the bias filter's prior rate error about the vertical, and
+// over the background heading's 5-10 s that drift is more than a clean field's error
+// (heading_field_sigma_rad), so the gyro-only heading is not swapped in.
+TEST(Estimator, DoesNotRestoreAGyroHeadingWhoseBiasIsUnknown) {
+  Scenario sc = makeScenario(65, 34.0, 0.0, 0.0);
+  for (auto& s : sc.samples) s.gyro_rad_s -= sc.bias;  // a bias-free gyro, not known to be
+  for (std::size_t i = 0; i < sc.samples.size(); ++i) {
+    const double t = static_cast<double>(i) / 100.0;
+    const double east_uT = std::clamp((t - 25.0) / 4.0, 0.0, 1.0) * 40.0;
+    sc.samples[i].mag_uT += sc.truth[i].q_nb.inverse() * Vec3(0.0, east_uT, 0.0);
+  }
+  EstimatorParams never_at_rest;
+  never_at_rest.rest_min_duration_s = 1e6;
+  const auto restores = [&](const EstimatorParams& p) {
+    Estimator est(p);
+    for (const auto& s : sc.samples) est.process(s);
+    EXPECT_TRUE(est.output().mag_disturbed);
+    // The rate sigma it would have to trust: tens of mrad/s (0.004 would already be too much).
+    EXPECT_GT(est.headingUncertainty().rateSigmaRadS(), 0.004);
+    return est.counters().mag_heading_restores;
+  };
+  EXPECT_EQ(restores(never_at_rest), 0u);
+  // Against a field stated to be as bad as that drift the same gyro heading is restored: the
+  // comparison, not the missing rest, is what holds it back.
+  EstimatorParams poor_field = never_at_rest;
+  poor_field.heading_field_sigma_rad = 1.0;
+  EXPECT_EQ(restores(poor_field), 1u);
+}
+
 }  // namespace
 }  // namespace headingd::core

@@ -139,6 +139,9 @@ class Estimator {
   // mag_rate_error_max_turn_rad_s).
   void correctHeading(const Vec3& mag_uT, double field_period_s, double turn_rate_rad_s);
   void restoreGyroHeading();
+  // Whether the background gyro-only heading of eq. 4.4 is expected to be better than a clean
+  // field's: a restore is worth it only then.
+  bool gyroHeadingBeatsAField() const;
   // The accelerometer's clipped axes this sample (accel_clipping.hpp) through the same
   // gyro-frame low-pass as its readings (turning: its blend weight, SteadyTurnWeight): their
   // share in the gravity measurement, per axis (signed), in the current sensor axes. Zero

@@ -338,6 +338,15 @@ struct EstimatorParams {
   // 10 s / 3 s lowers the disturbed average 2.58° → 2.26° (magnet attached 1 cm: 2.98° →
   // 1.55°) and leaves the undisturbed ones unchanged; on the simulated consumer-grade urban
   // walk (seeds 1-6) it costs 6.80° → 6.96°, a noisy gyro drifting in those seconds.
+  // Restored only where the gyro's drift over that age, at the rate sigma the heading
+  // uncertainty states about the vertical, is below heading_field_sigma_rad
+  // (Estimator::gyroHeadingBeatsAField; 2026-12-06). On the shared phones with magnets, carried
+  // from the start with no rest, that sigma is the bias filter's prior (36-50 mrad/s; the
+  // Nexus 5's bias-corrected stream 4.6-4.9) and the restores cost as often as they saved:
+  // fitted total nexus5_magnets / iphone_magnets, restores as before 5.16 / 3.62, only where
+  // the gyro beats the field 4.83 / 3.39, none 4.68 / 3.39; the simulator's 84 classes and
+  // BROAD (1.79 / 1.25°) are unchanged to the hundredth (their restores come after an opening
+  // rest: rate sigma 0.6-3.2 mrad/s), where none costs the urban walk 0.10-0.35° (buildings).
   double mag_restore_max_age_s = 10.0;
   // ... and only once the disturbance has lasted this long: single noisy samples must not
   // swap in seconds of gyro drift (restoring at every onset made BROAD's undisturbed
