@@ -13,18 +13,25 @@ VerticalRateError::VerticalRateError(const EstimatorParams& p)
       max_reference_age_s_(p.mag_rate_error_max_reference_age_s),
       max_set_aside_share_(p.mag_rate_error_max_set_aside_share),
       settle_s_(p.mag_rate_error_settle_s),
-      steady_heading_rad_(p.mag_rate_error_steady_heading_rad),
+      steady_cos_(std::cos(p.mag_rate_error_steady_heading_rad)),
       max_rate_rad_s_(p.bias_max_rad_s),
       reference_age_s_(std::numeric_limits<double>::infinity()),
       set_aside_alpha_(p.mag_rate_error_settle_s) {}
 
 void VerticalRateError::trackSteadyHeading(double dt_s, const Quat& q_nb) {
-  // When only a fix can show a clean field, advance() returns early before the first one:
-  // nothing can be learned, and no atan2 per sample is spent.
+  // The x-axis heading as a horizontal direction (cos ψ, sin ψ) times a positive length (yawZyx's
+  // atan2 arguments), compared with the anchor's by the angle between them: no atan2 per sample.
   steady_s_ += dt_s;
-  const double heading_rad = yawZyx(q_nb);
-  if (!(std::abs(wrapAngle(heading_rad - steady_anchor_rad_)) <= steady_heading_rad_)) {
-    steady_anchor_rad_ = heading_rad;
+  const double w = q_nb.w(), x = q_nb.x(), y = q_nb.y(), z = q_nb.z();
+  const Eigen::Vector2d heading(w * w + x * x - y * y - z * z, 2.0 * (x * y + w * z));
+  // angle ≤ θ ⇔ a·h ≥ cos θ |a| |h|, squared to spare the roots (the anchor is a unit vector).
+  const double along = steady_anchor_.dot(heading);
+  const double bound_squared = steady_cos_ * steady_cos_ * heading.squaredNorm();
+  const bool within = steady_cos_ >= 0.0 ? along >= 0.0 && along * along >= bound_squared
+                                         : along >= 0.0 || along * along <= bound_squared;
+  if (!within || !steady_anchored_) {
+    steady_anchor_ = heading.normalized();
+    steady_anchored_ = true;
     steady_s_ = 0.0;
   }
 }

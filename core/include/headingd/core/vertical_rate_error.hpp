@@ -72,12 +72,13 @@ class VerticalRateError {
   double max_reference_age_s_;       // 0: no fix needed
   double max_set_aside_share_;       // 0: a fix needed
   double settle_s_;
-  double steady_heading_rad_;
+  double steady_cos_;  // cos of mag_rate_error_steady_heading_rad
   double max_rate_rad_s_;
   double rate_rad_s_ = 0.0;
   double reference_age_s_;
   double steady_s_ = 0.0;
-  double steady_anchor_rad_ = std::numeric_limits<double>::quiet_NaN();  // none yet
+  Eigen::Vector2d steady_anchor_ = Eigen::Vector2d::Zero();  // unit heading direction
+  bool steady_anchored_ = false;
   LowPassAlpha set_aside_alpha_;
   double set_aside_share_ = 1.0;  // no field sample yet: not known to be clean
   double field_seen_s_ = 0.0;
