@@ -26,6 +26,7 @@
 
 #include "headingd/cli/parse_command_line.hpp"
 #include "headingd/files/output_file.hpp"
+#include "headingd/core/mag_heading_observer.hpp"
 #include "headingd/core/params_toml.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/numeric_csv.hpp"
@@ -77,27 +78,38 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
   return seeds;
 }
 
+// The field's dip through an attitude; NaN where it gives none (unknown reference, vertical field).
+double dipDeg(const core::Quat& q_nb, const core::Vec3& mag_uT) {
+  const auto m = core::measureMagHeading(q_nb, mag_uT, 0.0);
+  return m.valid ? m.dip_rad * kDeg : std::numeric_limits<double>::quiet_NaN();
+}
+
 void writeTrace(const std::string& path, const study::Recording& r, const core::EstimatorParams& params) {
   std::ostringstream out;  // written whole at the end, through a temporary file renamed into place
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
          "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,"
          "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
          "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms,"
-         "tilt_sigma_deg\n";
+         "tilt_sigma_deg,mag_norm_jump,mag_dip_jump,dip_deg,true_dip_deg,heading_prior_sigma_deg\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
-  std::vector<double> rate_sigmas, tilt_sigmas;
+  std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas;
   std::vector<std::pair<double, double>> accel_delays;  // the regression's estimate and sigma
   const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
     outputs.push_back(e.output());
     accel_delays.emplace_back(e.accelDelay().estimateS(), e.accelDelay().sigmaS());
     rate_sigmas.push_back(e.headingUncertainty().rateSigmaRadS());
+    prior_sigmas.push_back(e.headingUncertainty().priorSigmaRad());
     // tilt_sigma_deg: the EKF's own 1-sigma of the tilt, √ of its covariance about north plus east.
     tilt_sigmas.push_back(std::sqrt(e.ekf().tiltCovariance().trace()));
     still_blocks.push_back(e.counters().bias_still_blocks);
     restores.push_back(e.counters().mag_heading_restores);
   });
   const auto errors = study::perSampleErrors(r, est);
+  // mag_norm_jump, mag_dip_jump: which relative disturbance test fired. dip_deg, true_dip_deg:
+  // the field's dip through the estimated attitude (what the dip test sees) and through the
+  // reference's. heading_prior_sigma_deg: the heading sigma before the innovations
+  // (heading_uncertainty.hpp); heading_sigma_deg is the published one.
   char line[640];
   for (std::size_t i = 0; i < r.size(); ++i) {
     const auto& o = outputs[i];
@@ -108,7 +120,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDeg; };
     std::snprintf(line, sizeof line,
                   "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f\n",
+                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
@@ -119,7 +131,9 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   o.heading_redefined ? 1 : 0, o.head_height, wrapped_deg(o.heading_rad - t.yaw_rad),
                   wrapped_deg(o.yaw_rad - t.yaw_rad), 1e3 * o.vertical_rate_correction_rad_s, 1e3 * o.mag_lag_s,
                   1e3 * o.accel_lag_s, 1e3 * accel_delays[i].first, 1e3 * accel_delays[i].second,
-                  tilt_sigmas[i] * kDeg);
+                  tilt_sigmas[i] * kDeg, o.mag_disturbance.norm_jump ? 1 : 0, o.mag_disturbance.dip_jump ? 1 : 0,
+                  dipDeg(o.q_nb, r.samples[i].mag_uT), dipDeg(r.truth_nb[i], r.samples[i].mag_uT),
+                  prior_sigmas[i] * kDeg);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());
