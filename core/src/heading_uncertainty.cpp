@@ -17,6 +17,40 @@ const double kUnknownSigmaRad = std::numbers::pi / std::sqrt(3.0);
 // short against the observer's time constant, whose error is what is left.
 constexpr double kInnovationMeanS = 1.0;
 
+// The innovations' noise variance at least: keeps the filter that has seen them from dividing
+// by zero on a noiseless (simulated) sensor.
+constexpr double kMinNoiseVariance = 1e-8;  // rad², (0.006°)²
+
+// Sets b's variance, keeping its correlations (P stays positive semi-definite); returns the
+// factor b's standard deviation changed by.
+double setRateVariance(Eigen::Matrix3d& P, double variance) {
+  if (P(kB, kB) <= 0.0) {
+    P(kB, kB) = variance;
+    return 1.0;
+  }
+  if (variance == P(kB, kB)) return 1.0;
+  const double scale = std::sqrt(variance / P(kB, kB));
+  P.row(kB) *= scale;
+  P.col(kB) *= scale;
+  return scale;
+}
+
+// e ← e + b dt.
+void integrateRate(Eigen::Matrix3d& P, double dt_s) {
+  P(kE, kE) += 2.0 * dt_s * P(kE, kB) + dt_s * dt_s * P(kB, kB);
+  P(kE, kB) += dt_s * P(kB, kB);
+  P(kE, kU) += dt_s * P(kB, kU);
+  P(kB, kE) = P(kE, kB);
+  P(kU, kE) = P(kE, kU);
+}
+
+// u ← φ u + w, var w = (1 - φ²) steady.
+void decayField(Eigen::Matrix3d& P, double phi, double steady) {
+  P.row(kU) *= phi;
+  P.col(kU) *= phi;
+  P(kU, kU) += (1.0 - phi * phi) * steady;
+}
+
 }  // namespace
 
 HeadingUncertainty::HeadingUncertainty(const HeadingUncertaintyParams& params)
@@ -28,44 +62,40 @@ HeadingUncertainty::HeadingUncertainty(const HeadingUncertaintyParams& params)
 void HeadingUncertainty::forget() {
   known_ = false;
   // e is undefined until the field sets it: no correlation with b or u is kept.
-  P_.row(kE).setZero();
-  P_.col(kE).setZero();
+  for (Eigen::Matrix3d* P : {&P_, &shown_P_}) {
+    P->row(kE).setZero();
+    P->col(kE).setZero();
+  }
+  shown_x_(kE) = 0.0;
 }
 
 void HeadingUncertainty::predict(double dt_s, double rate_variance) {
-  // b: the gyro bias filter's vertical variance, unless the integral term has learned more
-  // (then b's own variance, which only the integral term lowers, is the smaller). Rescaling
-  // b's row and column keeps the correlations and P positive semi-definite.
+  // b: the gyro bias filter's vertical variance, unless the integral term (or, for the
+  // filter that has seen the innovations, the field) has shown more: then b's own variance,
+  // which only they lower, is the smaller.
   const double walk = p_.rate_walk_rad_s_per_sqrt_s * p_.rate_walk_rad_s_per_sqrt_s * dt_s;
-  const double b_variance = rate_started_ ? std::min(P_(kB, kB) + walk, rate_variance) : rate_variance;
-  if (P_(kB, kB) > 0.0 && b_variance != P_(kB, kB)) {
-    const double scale = std::sqrt(b_variance / P_(kB, kB));
-    P_.row(kB) *= scale;
-    P_.col(kB) *= scale;
-  } else if (P_(kB, kB) <= 0.0) {
-    P_(kB, kB) = b_variance;
-  }
+  const auto b_variance = [&](const Eigen::Matrix3d& P) {
+    return rate_started_ ? std::min(P(kB, kB) + walk, rate_variance) : rate_variance;
+  };
+  setRateVariance(P_, b_variance(P_));
+  shown_x_(kB) *= setRateVariance(shown_P_, b_variance(shown_P_));
   rate_started_ = true;
-  // e ← e + b dt.
   if (known_) {
-    P_(kE, kE) += 2.0 * dt_s * P_(kE, kB) + dt_s * dt_s * P_(kB, kB);
-    P_(kE, kB) += dt_s * P_(kB, kB);
-    P_(kE, kU) += dt_s * P_(kB, kU);
-    P_(kB, kE) = P_(kE, kB);
-    P_(kU, kE) = P_(kE, kU);
+    integrateRate(P_, dt_s);
+    integrateRate(shown_P_, dt_s);
+    shown_x_(kE) += dt_s * shown_x_(kB);
   }
-  // u ← φ u + w, φ = exp(-dt/T), var w = (1 - φ²) σ_u².
   const double phi = field_decay_(dt_s);
   const double steady =
       p_.field_sigma_rad * p_.field_sigma_rad + innovation_variance_ + p_.set_aside_share * set_aside_variance_;
   if (!field_started_) {
-    P_(kU, kU) = steady;  // the first sample: u in its steady state
+    P_(kU, kU) = shown_P_(kU, kU) = steady;  // the first sample: u in its steady state
     field_started_ = true;
     return;
   }
-  P_.row(kU) *= phi;
-  P_.col(kU) *= phi;
-  P_(kU, kU) += (1.0 - phi * phi) * steady;
+  decayField(P_, phi, steady);
+  decayField(shown_P_, phi, steady);
+  shown_x_(kU) *= phi;
 }
 
 void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
@@ -78,11 +108,30 @@ void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
   innovation_seen_s_ += dt_s;
   innovation_mean_rad_ += startedLowPassWeight(innovation_seen_s_, dt_s, 1.0 - innovation_mean_decay_(dt_s)) *
                           (innovation_rad - innovation_mean_rad_);
+  const double about_mean = innovation_rad - innovation_mean_rad_;
+  innovation_noise_variance_ += startedLowPassWeight(innovation_seen_s_, dt_s, 1.0 - field_sample_decay_(dt_s)) *
+                                (about_mean * about_mean - innovation_noise_variance_);
+  showInnovation(innovation_rad, dt_s);
   if (innovation_seen_s_ < kInnovationMeanS) return;
   const double spread_seen_s = innovation_seen_s_ - kInnovationMeanS + dt_s;
   const double squared = innovation_mean_rad_ * innovation_mean_rad_;
   innovation_variance_ +=
       startedLowPassWeight(spread_seen_s, dt_s, 1.0 - field_sample_decay_(dt_s)) * (squared - innovation_variance_);
+}
+
+void HeadingUncertainty::showInnovation(double innovation_rad, double dt_s) {
+  // ν = u - e + n, H = (-1, 0, 1) (written out below). n's variance counts once per
+  // kInnovationMeanS: the innovations' fast part (magnetometer noise, the stride's tilt error
+  // through the dip) is not white from sample to sample, and counted per sample it would say
+  // the field's mean error known a hundred times too soon.
+  if (!known_) return;
+  const double noise = std::max(innovation_noise_variance_, kMinNoiseVariance) *
+                       std::max(kInnovationMeanS / std::max(dt_s, 1e-6), 1.0);
+  const Eigen::Vector3d PHt = shown_P_.col(kU) - shown_P_.col(kE);
+  const double S = PHt(kU) - PHt(kE) + noise;
+  shown_x_ += PHt * ((innovation_rad - shown_x_(kU) + shown_x_(kE)) / S);
+  // P - P Hᵀ H P / S: a symmetric rank-one downdate.
+  shown_P_.noalias() -= PHt * (PHt.transpose() / S);
 }
 
 void HeadingUncertainty::observeSetAside(double innovation_rad, double dt_s) {
@@ -93,22 +142,32 @@ void HeadingUncertainty::observeSetAside(double innovation_rad, double dt_s) {
 
 void HeadingUncertainty::correct(double gain, double rate_gain) {
   // x ← A x with e ← (1 - K) e + K u (innovation = ψ_mm - ψ = u - e) and b ← b + g (u - e)
-  // (the integral term's rate moves by g × innovation): P ← A P Aᵀ.
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
-  A(kE, kE) = 1.0 - gain;
-  A(kE, kU) = gain;
-  A(kB, kE) = -rate_gain;
-  A(kB, kU) = rate_gain;
-  if (!known_) {
-    // The field sets the heading outright: e = u from now on.
-    A(kE, kE) = 0.0;
-    A(kE, kU) = 1.0;
-    known_ = true;
+  // (the integral term's rate moves by g × innovation): P ← A P Aᵀ. The field sets the first
+  // heading outright: e = u from then on.
+  const double keep = known_ ? 1.0 - gain : 0.0;
+  const double take = known_ ? gain : 1.0;
+  known_ = true;
+  const auto transform = [&](auto&& e, auto&& b, const auto& u) {  // rows, then columns
+    b += rate_gain * (u - e);
+    e = keep * e + take * u;
+  };
+  for (Eigen::Matrix3d* P : {&P_, &shown_P_}) {
+    transform(P->row(kE), P->row(kB), P->row(kU));
+    transform(P->col(kE), P->col(kB), P->col(kU));
   }
-  P_ = A * P_ * A.transpose();
+  transform(shown_x_(kE), shown_x_(kB), shown_x_(kU));
 }
 
 double HeadingUncertainty::sigmaRad() const {
+  if (!known_) return kUnknownSigmaRad;
+  // The smaller of the two (measured: heading-sigma.md). Where the estimator's steps alone
+  // bound the error well (the bias learned at rest) the filter's estimate ê adds its own
+  // spread; where they do not (no rest: the bias filter's prior) the innovations show more.
+  const double shown = std::max(shown_P_(kE, kE), 0.0) + shown_x_(kE) * shown_x_(kE);
+  return std::sqrt(std::min(shown, std::max(P_(kE, kE), 0.0)));
+}
+
+double HeadingUncertainty::priorSigmaRad() const {
   return known_ ? std::sqrt(std::max(P_(kE, kE), 0.0)) : kUnknownSigmaRad;
 }
 

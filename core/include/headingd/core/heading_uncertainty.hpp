@@ -21,6 +21,18 @@
 // A field sample used with gain K (eq. 4.2) makes e ← (1 - K) e + K u; the observer's
 // integral term, when on, makes b ← b + g (u - e) with its own gain g. Before the first field
 // sample the heading is unknown: σ is that of an angle uniform on the circle (π/√3).
+//
+// That covariance says what the estimator's errors may be before anyone looks at the
+// innovations. But the innovations (ν = u - e) show the errors: a rate error b makes them
+// drift to b τ and stay there, so a minute of small innovations says b is small. Beside it a
+// Kalman filter over the same (e, b, u), with the same steps, takes each used sample's
+// innovation as a measurement of u - e (its white noise learned from the innovations' spread
+// about their one-second mean) and estimates the estimator's own errors. The published σ is
+// the smaller of the first's √P_ee and the filter's posterior expected squared error
+// √(P_ee + ê²): on a phone carried from the start (no rest, the bias filter's prior of tens
+// of mrad/s, 30-100° of heading σ) the second, once the field has shown the rate error
+// small. Neither changes the estimate; rateSigmaRadS() stays the first's (the restore of
+// eq. 4.4 is gated on it).
 #include <Eigen/Core>
 
 #include "headingd/core/low_pass.hpp"
@@ -63,16 +75,27 @@ class HeadingUncertainty {
   void correct(double gain, double rate_gain);
 
   bool known() const { return known_; }
+  // The published 1-sigma: the smaller of priorSigmaRad() and √(P_ee + ê²) of the filter
+  // that has seen the innovations (above).
   double sigmaRad() const;
+  // The same before the innovations: what the estimator's steps alone imply.
+  double priorSigmaRad() const;
   // Standard deviation of b, the rate error about the vertical (rad/s).
   double rateSigmaRadS() const;
 
  private:
+  // The Kalman update of the filter that has seen the innovations.
+  void showInnovation(double innovation_rad, double dt_s);
+
   HeadingUncertaintyParams p_;
   ExpDecay field_decay_;            // u's, per IMU sample
   ExpDecay field_sample_decay_;     // the innovations' spread's average, per field sample
   ExpDecay innovation_mean_decay_;  // the innovations' one-second mean
   Eigen::Matrix3d P_ = Eigen::Matrix3d::Zero();  // over (e, b, u)
+  // The filter that has seen the innovations: its estimate of (e, b, u) and covariance.
+  Eigen::Vector3d shown_x_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d shown_P_ = Eigen::Matrix3d::Zero();
+  double innovation_noise_variance_ = 0.0;  // per sample, about the one-second mean
   bool known_ = false;
   bool rate_started_ = false;   // P_(1, 1) has been set from the bias filter
   bool field_started_ = false;  // P_(2, 2) has been set
