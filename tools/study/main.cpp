@@ -107,8 +107,9 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   });
   const auto errors = study::perSampleErrors(r, est);
   // mag_norm_jump, mag_dip_jump: which relative disturbance test fired. dip_deg, true_dip_deg:
-  // the field's dip through the estimated attitude (what the dip test sees) and through the
-  // reference's. heading_prior_sigma_deg: the heading sigma before the innovations
+  // the sample's raw field's dip through the published attitude and through the reference's
+  // (the dip test's own is of the field turned forward by its lag, through the attitude
+  // before the sample's updates). heading_prior_sigma_deg: the heading sigma before the innovations
   // (heading_uncertainty.hpp); heading_sigma_deg is the published one.
   char line[640];
   for (std::size_t i = 0; i < r.size(); ++i) {
