@@ -90,16 +90,17 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
          "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,"
          "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
          "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms,"
-         "tilt_sigma_deg,mag_norm_jump,mag_dip_jump,dip_deg,true_dip_deg,heading_prior_sigma_deg\n";
+         "tilt_sigma_deg,mag_norm_jump,mag_dip_jump,dip_deg,true_dip_deg,heading_prior_sigma_deg,mag_dip_deviation_deg\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
-  std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas;
+  std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas, dip_deviations;
   std::vector<std::pair<double, double>> accel_delays;  // the regression's estimate and sigma
   const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
     outputs.push_back(e.output());
     accel_delays.emplace_back(e.accelDelay().estimateS(), e.accelDelay().sigmaS());
     rate_sigmas.push_back(e.headingUncertainty().rateSigmaRadS());
     prior_sigmas.push_back(e.headingUncertainty().priorSigmaRad());
+    dip_deviations.push_back(e.magDisturbance().dipDeviation());
     // tilt_sigma_deg: the EKF's own 1-sigma of the tilt, √ of its covariance about north plus east.
     tilt_sigmas.push_back(std::sqrt(e.ekf().tiltCovariance().trace()));
     still_blocks.push_back(e.counters().bias_still_blocks);
@@ -109,8 +110,9 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   // mag_norm_jump, mag_dip_jump: which relative disturbance test fired. dip_deg, true_dip_deg:
   // the sample's raw field's dip through the published attitude and through the reference's
   // (the dip test's own is of the field turned forward by its lag, through the attitude
-  // before the sample's updates). heading_prior_sigma_deg: the heading sigma before the innovations
-  // (heading_uncertainty.hpp); heading_sigma_deg is the published one.
+  // before the sample's updates), and mag_dip_deviation_deg the dip test's own |dip - its
+  // low-pass| at the last field sample. heading_prior_sigma_deg: the heading sigma before the
+  // innovations (heading_uncertainty.hpp); heading_sigma_deg is the published one.
   char line[640];
   for (std::size_t i = 0; i < r.size(); ++i) {
     const auto& o = outputs[i];
@@ -121,7 +123,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDeg; };
     std::snprintf(line, sizeof line,
                   "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f\n",
+                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
@@ -134,7 +136,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   1e3 * o.accel_lag_s, 1e3 * accel_delays[i].first, 1e3 * accel_delays[i].second,
                   tilt_sigmas[i] * kDeg, o.mag_disturbance.norm_jump ? 1 : 0, o.mag_disturbance.dip_jump ? 1 : 0,
                   dipDeg(o.q_nb, r.samples[i].mag_uT), dipDeg(r.truth_nb[i], r.samples[i].mag_uT),
-                  prior_sigmas[i] * kDeg);
+                  prior_sigmas[i] * kDeg, dip_deviations[i] * kDeg);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());

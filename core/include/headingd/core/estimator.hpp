@@ -122,6 +122,7 @@ class Estimator {
   const AttitudeEkf& ekf() const { return ekf_; }
   const HeadingUncertainty& headingUncertainty() const { return heading_uncertainty_; }
   const VectorDelayEstimator& magDelay() const { return mag_delay_; }
+  const MagDisturbanceDetector& magDisturbance() const { return mag_disturbance_; }
   const VectorDelayEstimator& accelDelay() const { return accel_delay_; }
   const GyroBiasEstimator& gyroBias() const { return bias_; }
 
