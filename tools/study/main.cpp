@@ -78,9 +78,9 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
   return seeds;
 }
 
-// The field's dip through an attitude; NaN where it gives none (unknown reference, vertical field).
-double dipDeg(const core::Quat& q_nb, const core::Vec3& mag_uT) {
-  const auto m = core::measureMagHeading(q_nb, mag_uT, 0.0);
+// The field's dip in a measurement through an attitude; NaN where it gives none (unknown
+// reference, vertical field).
+double dipDeg(const core::MagHeadingMeasurement& m) {
   return m.valid ? m.dip_rad * kDeg : std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -90,7 +90,8 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
          "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,"
          "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
          "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms,"
-         "tilt_sigma_deg,mag_norm_jump,mag_dip_jump,dip_deg,true_dip_deg,heading_prior_sigma_deg,mag_dip_deviation_deg\n";
+         "tilt_sigma_deg,mag_norm_jump,mag_dip_jump,dip_deg,true_dip_deg,heading_prior_sigma_deg,mag_dip_deviation_deg,"
+         "field_heading_error_deg,tilt_heading_error_deg,vertical_error_deg\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
   std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas, dip_deviations;
@@ -113,7 +114,13 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   // before the sample's updates), and mag_dip_deviation_deg the dip test's own |dip - its
   // low-pass| at the last field sample. heading_prior_sigma_deg: the heading sigma before the
   // innovations (heading_uncertainty.hpp); heading_sigma_deg is the published one.
-  char line[640];
+  // field_heading_error_deg: the heading the sample's raw field gives through the reference's
+  // attitude less the reference's heading (the field's own error: a building, a residual hard
+  // iron, the noise); tilt_heading_error_deg: what the published tilt adds to that (the
+  // field's own error and the estimate's turn about the vertical: the innovation the published
+  // attitude gives less the reference's, plus that turn), tan(dip) times the tilt's error
+  // about magnetic north.
+  char line[704];
   for (std::size_t i = 0; i < r.size(); ++i) {
     const auto& o = outputs[i];
     const auto e = core::eulerZyx(o.q_nb);
@@ -121,9 +128,20 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     // The published heading (x-axis yaw, or lying down the head's) and the x-axis yaw against
     // the reference's x-axis yaw, plain (no alignment fitted).
     const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDeg; };
+    const auto through_truth = core::measureMagHeading(r.truth_nb[i], r.samples[i].mag_uT, 0.0);
+    const auto through_estimate = core::measureMagHeading(o.q_nb, r.samples[i].mag_uT, 0.0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double field_error_deg = through_truth.valid ? wrapped_deg(through_truth.innovation_rad) : nan;
+    // The estimate's turn from the reference about NED down (signed; the twist of q q_ref⁻¹).
+    const core::Quat turn = o.q_nb * r.truth_nb[i].conjugate();
+    const double vertical_error_rad = 2.0 * std::atan(turn.z() / turn.w());
+    const double tilt_error_deg =
+        through_truth.valid && through_estimate.valid
+            ? wrapped_deg(through_estimate.innovation_rad - through_truth.innovation_rad + vertical_error_rad)
+            : nan;
     std::snprintf(line, sizeof line,
                   "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f\n",
+                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
@@ -135,8 +153,9 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   wrapped_deg(o.yaw_rad - t.yaw_rad), 1e3 * o.vertical_rate_correction_rad_s, 1e3 * o.mag_lag_s,
                   1e3 * o.accel_lag_s, 1e3 * accel_delays[i].first, 1e3 * accel_delays[i].second,
                   tilt_sigmas[i] * kDeg, o.mag_disturbance.norm_jump ? 1 : 0, o.mag_disturbance.dip_jump ? 1 : 0,
-                  dipDeg(o.q_nb, r.samples[i].mag_uT), dipDeg(r.truth_nb[i], r.samples[i].mag_uT),
-                  prior_sigmas[i] * kDeg, dip_deviations[i] * kDeg);
+                  dipDeg(through_estimate), dipDeg(through_truth),
+                  prior_sigmas[i] * kDeg, dip_deviations[i] * kDeg, field_error_deg, tilt_error_deg,
+                  vertical_error_rad * kDeg);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());
