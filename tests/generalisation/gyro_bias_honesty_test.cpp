@@ -2,7 +2,10 @@
 // (issue 28 item 3): on the simulator's phone scenarios (short opening rests, then carried:
 // texting, calling, swinging, pocket, running) at the phone, consumer and mems grades, each
 // component of the estimate's error against the true bias (offset plus drift, sensor axes)
-// lies within 3 of its stated standard deviations in at least 99 % of the samples.
+// lies within 3 of its stated standard deviations in at least 99 % of the samples. Twelve
+// seeds: the phone grade draws each axis's constant bias up to 6 deg/s, and seeds 9 and 12
+// draw biases near or beyond the estimate's old clamp of 0.1 rad/s (seed 12: 0.112 rad/s in
+// all), which held them 8-11 mrad/s wrong (37-97 % of their samples within 3 sigma).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,7 +47,7 @@ class PhoneClass : public ::testing::TestWithParam<std::tuple<std::string, sim::
 
 TEST_P(PhoneClass, TheBiasErrorLiesWithin3SigmaIn99PercentOfSamples) {
   const auto& [scenario, grade] = GetParam();
-  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     const sim::SimResult result =
         sim::simulate(sim::simConfig(scenario, seed, grade, 100.0), sim::phoneScenario(scenario, seed), wmm());
     const Honesty h = biasHonesty(result);

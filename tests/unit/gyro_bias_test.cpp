@@ -164,7 +164,7 @@ TEST(GyroBiasEstimator, AnOpeningRestShorterThanABlockGivesTheBiasOfItsStillPart
 
 TEST(GyroBiasEstimator, BiasWithinTheClampIsLearnedFromColdStart) {
   // 0.05 rad/s (2.9°/s, common for uncalibrated MEMS) is far above the rest thresholds and
-  // within bias_max_rad_s (0.1).
+  // within bias_max_rad_s (0.2).
   const EstimatorParams p;
   GyroBiasEstimator est(p);
   StillSensor s{test::fromYawPitchRoll(-2.0, 0.1, 0.3)};
