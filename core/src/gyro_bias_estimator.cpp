@@ -29,7 +29,9 @@ V clipped(const V& e, double limit) {
 GyroBiasEstimator::GyroBiasEstimator(const EstimatorParams& p)
     : p_(p),
       rest_(p),
-      initial_variance_(0.25 * p.bias_max_rad_s * p.bias_max_rad_s),
+      // Per axis a quarter of the clamp on the magnitude (0.05 rad/s with the default 0.2):
+      // 6 deg/s on one axis is 2.1 sigma, and the clamp 4 sigma of one axis.
+      initial_variance_(0.0625 * p.bias_max_rad_s * p.bias_max_rad_s),
       horizontal_rows_(p.accel_prefilter_time_constant_s),
       spread_{TurnSpread(tiltTimeConstantS(p)), TurnSpread(tiltTimeConstantS(p))} {
   P_ = initial_variance_ * Mat3::Identity();

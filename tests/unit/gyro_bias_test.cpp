@@ -322,7 +322,7 @@ double runLaggedLoop(const EstimatorParams& p, double beta, double first_seconds
 
 TEST(GyroBiasEstimator, TheFirstTurnsDoNotSetTheBiasFasterThanTheTiltAnswers) {
   // The turns answer a changed estimate only through the tilt's lag (3.3 s here): an update
-  // that follows them faster overshoots. With nothing known yet (P at half the clamp) the
+  // that follows them faster overshoots. With nothing known yet (P at its prior) the
   // Kalman gain alone would follow within a second.
   const double beta = 0.02;
   const EstimatorParams p;
