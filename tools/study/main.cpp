@@ -116,10 +116,10 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   // innovations (heading_uncertainty.hpp); heading_sigma_deg is the published one.
   // field_heading_error_deg: the heading the sample's raw field gives through the reference's
   // attitude less the reference's heading (the field's own error: a building, a residual hard
-  // iron, the noise); tilt_heading_error_deg: what the published tilt adds to that (the
-  // field's own error and the estimate's turn about the vertical: the innovation the published
-  // attitude gives less the reference's, plus that turn), tan(dip) times the tilt's error
-  // about magnetic north.
+  // iron, the noise). tilt_heading_error_deg: what the published tilt adds to that, tan(dip)
+  // times the tilt's error about magnetic north (the innovation through the published attitude
+  // less the one through the reference's, plus the estimate's turn about the vertical, which
+  // the first difference holds too). vertical_error_deg: that turn (signed).
   char line[704];
   for (std::size_t i = 0; i < r.size(); ++i) {
     const auto& o = outputs[i];
