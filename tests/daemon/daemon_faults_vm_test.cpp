@@ -179,7 +179,9 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
   const auto misses = static_cast<double>(during.deadline_misses - before.deadline_misses);
   // What reached this process over UDP in the flood's window on the wall clock (HEADING's utime
   // is its publish time). This process shares the two emulated CPUs with the flood and the
-  // daemon, so its socket may overflow: that loss is the receiver's, and the bound is looser.
+  // daemon, so its socket may overflow: that loss is the receiver's, and the bound is looser
+  // than the daemon's own rate below (received in the flood, five clean-clone runs: 74, 82,
+  // 84, 93 % and a pass; 0.75 failed once at 74 % while STATUS said 100.1 Hz published).
   std::size_t heading_in_flood = 0;
   for (const auto& h : lcm_->heading()) {
     const auto utime = static_cast<double>(h.message.utime);
@@ -192,7 +194,7 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
                status_span_s, ticks, misses, after.rate_hz, flood_s, heading_in_flood, before.heading_rate_hz,
                during.heading_rate_hz);
   EXPECT_GE(ticks + misses, status_span_s * after.rate_hz * 0.9);
-  EXPECT_GE(static_cast<double>(heading_in_flood), flood_s * after.rate_hz * 0.75);
+  EXPECT_GE(static_cast<double>(heading_in_flood), flood_s * after.rate_hz * 0.6);
   EXPECT_GE(during.heading_rate_hz, 0.75 * std::min(before.heading_rate_hz, after.rate_hz));
   EXPECT_EQ(paced_again.state, "ok") << paced_again.reason;
   expectRunningThenStop();
