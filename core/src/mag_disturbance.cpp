@@ -32,6 +32,16 @@ double MagDisturbanceDetector::turnedAgainstField() const {
   return sin_angle > 0.0 || cos_angle > 0.0 ? std::atan2(sin_angle, cos_angle) : 0.0;
 }
 
+double MagDisturbanceDetector::relativeThreshold(const NoiseFloor& floor, double configured) {
+  // Until the floor is known (its first 2 s), the largest value it could give: at the
+  // configured minimum a noisy magnetometer (1-1.5 µT per axis, phones) looked disturbed a
+  // fifth to a half of the time then (simulated phone grade: 17-63 %), and a still block
+  // without the field takes a hand's turn about the vertical for bias (rest_detector.hpp;
+  // issue 28 item 3).
+  const double maximum = 5.0 * configured;
+  return std::isfinite(floor.value()) ? floor.threshold(4.0, configured, maximum) : maximum;
+}
+
 MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad, double dt_s, bool has_directions) {
   // Deviations are taken against the low-pass *before* this sample enters it.
   norm_deviation_ = norm_lp_.initialised() ? std::abs(field_norm_uT - norm_lp_.value()) : 0.0;  // eq. 4.5
@@ -40,14 +50,14 @@ MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad
   dip_lp_.update(dip_rad, dt_s);
   norm_floor_.update(std::sqrt(norm_deviation2_.update(norm_deviation_ * norm_deviation_, dt_s)), dt_s);
   dip_floor_.update(std::sqrt(dip_deviation2_.update(dip_deviation_ * dip_deviation_, dt_s)), dt_s);
-  double norm_threshold = norm_floor_.threshold(4.0, p_.max_norm_deviation_uT, 5.0 * p_.max_norm_deviation_uT);
+  double norm_threshold = relativeThreshold(norm_floor_, p_.max_norm_deviation_uT);
   // The allowance, measured only where it may decide (an angle costs an atan2).
   turned_rad_ = 0.0;
   if (has_directions && norm_deviation_ > norm_threshold) {
     turned_rad_ = turnedAgainstField();
     norm_threshold += p_.residual_hard_iron_uT * turned_rad_;
   }
-  const double dip_threshold = dip_floor_.threshold(4.0, p_.max_dip_deviation_rad, 5.0 * p_.max_dip_deviation_rad);
+  const double dip_threshold = relativeThreshold(dip_floor_, p_.max_dip_deviation_rad);
   MagDisturbance d;
   d.norm_jump = norm_deviation_ > norm_threshold;
   d.dip_jump = dip_deviation_ > dip_threshold;

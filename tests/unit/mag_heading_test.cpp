@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "headingd/core/heading_definition.hpp"
@@ -152,6 +153,30 @@ TEST(MagDisturbance, SteadyFieldIsNeverDisturbed) {
   }
 }
 
+TEST(MagDisturbance, ANoisyMagnetometersFirstSecondsAreNotTakenForADisturbance) {
+  // A phone's magnetometer with 1.5 µT of noise per axis, at the estimator's thresholds
+  // (1.5 µT, 4°): while the noise floors are not known (2 s), the tests take the largest
+  // threshold a floor could give; at the configured ones 121 of the first 200 samples were flagged.
+  MagDisturbanceParams p{};
+  p.time_constant_s = 3.0;
+  p.max_norm_deviation_uT = 1.5;
+  p.max_dip_deviation_rad = 0.07;
+  MagDisturbanceDetector d(p);
+  Random rng(54);
+  const Vec3 field(15.0, 2.0, 48.0);
+  int flagged_first = 0, flagged_later = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 m = field + rng.gaussian(1.5);
+    const double dip = std::atan2(m.z(), m.head<2>().norm());
+    (i < 200 ? flagged_first : flagged_later) += disturbed(d.update(m, dip, 0.01)) ? 1 : 0;
+  }
+  std::printf("flagged: %d of the first 200 samples, %d of the next 800\n", flagged_first, flagged_later);
+  EXPECT_LE(flagged_first, 2);
+  EXPECT_LE(flagged_later, 8);
+  // Once the floors are known a step of 4 floors is a disturbance again.
+  EXPECT_TRUE(disturbed(d.update(field + Vec3(0.0, 0.0, 12.0), std::atan2(60.0, field.head<2>().norm()), 0.01)));
+}
+
 TEST(MagDisturbance, StrengthStepIsDisturbedUntilTheLowPassFollows) {
   // Eq. 4.5: Δm = ||m| - |m_lp|| against the threshold; a lasting change is accepted again
   // once the low-pass (τ = 3 s) has followed it: 5 µT · e^{-t/τ} < 3 µT after ~1.5 s.
@@ -246,7 +271,7 @@ MagDisturbanceDetector returningDetector() {
 
 // Samples (at 100 Hz) until the detector says clean again after `spike_s` of a 300 µT
 // field with a wrong dip that then returns to 49 µT, 1.15 rad.
-int samplesDisturbedAfterASpike(MagDisturbanceDetector d, double spike_s) {
+int samplesDisturbedAfterASpike(MagDisturbanceDetector& d, double spike_s) {
   for (int i = 0; i < 500; ++i) EXPECT_FALSE(disturbed(d.update(fieldOf(49.0), 1.15, 0.01)));
   for (int i = 0; i < static_cast<int>(spike_s * 100); ++i) EXPECT_TRUE(disturbed(d.update(fieldOf(300.0), 0.3, 0.01)));
   int count = 0;
@@ -256,14 +281,14 @@ int samplesDisturbedAfterASpike(MagDisturbanceDetector d, double spike_s) {
 
 TEST(MagDisturbance, AFieldBackWhereItWasBeforeAPassingMagnetIsCleanAgainAfterAShortWhile) {
   // The low-passes alone: ln(251 / 3) = 4.4 time constants, 13 s.
-  EXPECT_GT(samplesDisturbedAfterASpike(lowPassDetector(), 5.0), 1000);
+  MagDisturbanceDetector low_passes = lowPassDetector();
+  EXPECT_GT(samplesDisturbedAfterASpike(low_passes, 5.0), 1000);
   // Back within the thresholds of the strength and dip it had while clean: the 50th sample
   // back (0.5 s) is clean.
-  EXPECT_EQ(samplesDisturbedAfterASpike(returningDetector(), 5.0), 49);
+  MagDisturbanceDetector d = returningDetector();
+  EXPECT_EQ(samplesDisturbedAfterASpike(d, 5.0), 49);
   // And the low-passes restart there: the next samples are clean, and a new disturbance is
   // measured from there.
-  MagDisturbanceDetector d = returningDetector();
-  samplesDisturbedAfterASpike(d, 5.0);
   for (int i = 0; i < 100; ++i) EXPECT_FALSE(disturbed(d.update(fieldOf(49.0), 1.15, 0.01)));
   EXPECT_TRUE(disturbed(d.update(fieldOf(54.0), 1.15, 0.01)));
   EXPECT_NEAR(d.normDeviation(), 5.0, 0.01);

@@ -397,6 +397,8 @@ struct EstimatorParams {
   double rest_accel_threshold_m_s2 = 0.5;  // RMS
   // Upper bound of the gyro's rest threshold when it follows the learned noise floor.
   double rest_gyro_max_threshold_rad_s = 0.5;
+  // A block is judged after rest_min_duration_s, and again every as long while the rest
+  // lasts (it grows, in place of its last version, up to bias_time_constant_s).
   double rest_min_duration_s = 1.5;
   double rest_filter_time_constant_s = 0.5;
   // A still block may turn at most this fast (gravity and the field measure the turn, which
@@ -408,7 +410,7 @@ struct EstimatorParams {
   double bias_walk_rad_s_per_sqrt_s = 1.7e-4;
   // At rest the estimate follows the mean rate with this time constant (steady state; the
   // first rest converges faster, from the large uncertainty of knowing nothing).
-  double bias_time_constant_s = 10.0;
+  double bias_time_constant_s = 10.0;  // also the longest a still block grows
   // In motion, the gravity update's corrections measure the horizontal part of the bias
   // error; the estimate follows them with this time constant at most (0 turns it off), each
   // 0.1 s window weighted by the turns' measured spread (gyro_bias_estimator.hpp).

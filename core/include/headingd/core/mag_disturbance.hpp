@@ -15,7 +15,8 @@
 //
 // The two relative tests compare single samples, so their thresholds must sit above the
 // magnetometer's own noise: each is the configured value or 4 times the learned noise floor
-// of that deviation (noise_floor.hpp), whichever is larger (at most 5 times the configured).
+// of that deviation (noise_floor.hpp), whichever is larger (at most 5 times the configured;
+// that most until the floor is known, in the first 2 s).
 // And the strength test allows for a calibration's residual hard iron h: as the sensor turns
 // by an angle θ against the field, the strength it measures changes by up to |h| θ, so the
 // threshold grows by residual_hard_iron_uT × θ, θ the angle between the field's direction
@@ -94,6 +95,8 @@ class MagDisturbanceDetector {
   // The tests; the strength's allowance from the directions the update just took, if it took them.
   MagDisturbance test(double field_norm_uT, double dip_rad, double dt_s, bool has_directions);
   double turnedAgainstField() const;
+  // A relative test's threshold: 4 times the learned floor, within 1-5 times the configured value.
+  static double relativeThreshold(const NoiseFloor& floor, double configured);
 
   MagDisturbanceParams p_;
   LowPass<double> norm_lp_;

@@ -24,8 +24,11 @@
 // low-passed directions of gravity (accelerometer) and, when the field is usable and
 // undisturbed all through, of the field (magnetometer) move as the sensor turns, Δu = u × θ.
 // Gravity sees the part of θ about horizontal axes, the field the part about the vertical.
-// Two hypotheses are weighed by their Bayes factor: the block lay still (θ = 0), or it turned
-// a little (θ ~ N(0, σ_p²), σ_p half of rest_max_turn_rate_rad_s times the block's length).
+// Hypotheses are weighed by their Bayes factors: each part of the turn, about the horizontal
+// axes and about the vertical, lay still (0) or turned a little (N(0, σ_p²), σ_p half of
+// rest_max_turn_rate_rad_s times the block's length), each with equal prior odds; apart, so
+// that a standing body's sway about horizontal axes, which gravity sees clearly, does not make
+// the field's noisier view of the vertical count in full.
 // The block's bias is (∫ω̄ dt - θ̂) / T with θ̂ the mixture's turn: a turn the vectors clearly
 // saw is taken off, mere noise is not (so a sensor that lies still gets the gyro's own
 // precision, not the field's noise). A block counts when θ̂ is within the turn limit and the
@@ -39,6 +42,15 @@
 // the true rest then fails it. Without a usable field a turn about the vertical is not seen
 // and is taken as none: the block counts that part of its rate as bias (a person standing
 // sways about horizontal axes; a slow steady turn about the vertical is the limitation).
+// A block grows while the rest goes on: judged again every rest_min_duration_s from its own
+// start, it replaces its last version, up to bias_time_constant_s (the estimate's memory at
+// rest; then it stands and the next one begins). Why: the field's view of a turn about the
+// vertical is its horizontal part's noise over a turn of a few degrees, which within one
+// block of 1.5 s hides a hand's slow drift (1-2.5 deg/s), so each block took most of it as
+// bias, and consecutive blocks, counted as independent, made a confident estimate of it (a
+// phone held at 70° pitch, simulated hand-held, seeds 5 and 7: 15 mrad/s wrong at 6 sigma).
+// Over a grown block the turn grows with its length and the noise does not. A grown block
+// that lost the field, or fails its tests, stands as last counted, and a new one begins.
 // The first moments of a motion pass every test (a slow start; a person setting off, whose
 // acceleration tilts the apparent gravity, which a block takes for a turn: 15 mrad/s of bias
 // learned wrong, simulated phone-running-circles consumer seed 6) and are found a few tenths of
@@ -77,8 +89,10 @@ class RestDetector {
   enum class News {
     kNone,
     kNewBlock,            // a still block ended with this sample: block() holds it
-    kLastBlockRevised,    // a motion was found just after the last block: block() holds its
-                          // part before the motion, which replaces it
+    kLastBlockRevised,    // the last block grew (the rest went on): block() holds it, which
+                          // replaces it; or a motion was found just after the last block:
+                          // block() holds its part before the motion (or, for a grown block,
+                          // its version before it last grew), which replaces it
     kLastBlockWithdrawn,  // ... and too little of it lay before the motion: it does not count
   };
   // mag_uT: the field sample, or nullptr when there is none or it is disturbed.
@@ -95,13 +109,20 @@ class RestDetector {
     double update(const Vec3& v, double dt_s);  // returns the RMS deviation
     Vec3 direction() const { return mean.normalized(); }
     // Standard deviation of the mean's direction (rad) from the sensor's noise floor: white
-    // noise σ through a first-order low-pass has σ √(dt / 2τ).
+    // noise σ through a first-order low-pass has σ √(dt / 2τ), dt the sensor's own sample
+    // period (a sample repeated until the next one, a phone's magnetometer at 25-50 Hz read
+    // at 100 Hz, is one sample, not several: at the IMU's dt the field's direction looked 1.4-2
+    // times steadier than it was, and its noise passed for a turn about the vertical).
     // rms_at_end: the deviation where the block judged ends, while the floor is not known.
     double directionSigma(const NoiseFloor& floor, double rms_at_end, double dt_s, double time_constant_s) const;
     LowPassAlpha alpha;
     double elapsed_s = 0.0;
     Vec3 mean = Vec3::Zero();
     double deviation2 = 0.0;
+    // The sensor's own sample period: the time between changed samples, averaged.
+    Vec3 last = Vec3::Zero();
+    double since_change_s = 0.0;
+    double sample_period_s = 0.0;  // 0 until a second change
   };
 
   // A block's course, sample by sample: where it stands after time_s, what a cut judges.
@@ -139,6 +160,11 @@ class RestDetector {
   bool judgePart(double dt_s, const Block& block, double end_s, double min_s, double gyro_bound);
   // How long the sensor must stay steady after a still block for the block to stand.
   double confirmWindowS() const;
+  // The block in progress at one of its judgements (every rest_min_duration_s): counted for
+  // the first time, grown (it replaces its last version), or it stands as last counted.
+  News judgeGrowingBlock(double dt_s, const BlockPoint& now, bool has_mag);
+  // The block in progress has counted with the field and lost it since.
+  bool lostField() const;
 
   EstimatorParams p_;  // a copy: the owner may be copied or moved (gyro_bias_estimator.hpp)
   SteadyVector gyro_;
@@ -160,6 +186,11 @@ class RestDetector {
   double block_time_s_ = 0.0;
   Vec3 block_rotation_ = Vec3::Zero();  // ∫ ω̄ dt over the block
   Block current_;
+  double next_judgement_s_ = 0.0;  // block time of the current block's next judgement
+  int block_counted_ = 0;          // how often the current block has counted (0: not yet)
+  bool counted_with_mag_ = false;  // the field saw its last counted version
+  RestBlock before_growth_;        // the block as it counted before it last grew
+  bool pending_is_growth_ = false;  // the pending block is a grown one (its fallback: before_growth_)
   RestBlock block_;
   // The last still block while the steadiness after it is not yet a confirmation window long.
   bool has_pending_ = false;
