@@ -136,7 +136,7 @@ class RestDetector {
     double mag_rms;  // zero without the field
   };
   // A block: the directions its turn is measured from and its course (the first
-  // kCoursePoints samples: at 1 kHz and below, all of a 2 s block).
+  // kCoursePoints samples: at 1 kHz and below, all of a 2 s block; at 200 Hz, of a 10 s grown one).
   struct Block {
     Vec3 accel_start = Vec3::Zero();
     Vec3 mag_start = Vec3::Zero();
