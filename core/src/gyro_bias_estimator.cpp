@@ -26,32 +26,37 @@ V clipped(const V& e, double limit) {
 
 }  // namespace
 
+namespace {
+
+DriftingBias::Params driftingBiasParams(const EstimatorParams& p) {
+  // Per axis a quarter of the clamp on the magnitude (0.05 rad/s with the default 0.2):
+  // 6 deg/s on one axis is 2.1 sigma, and the clamp 4 sigma of one axis.
+  return {p.bias_walk_rad_s_per_sqrt_s, p.bias_instability_rad_s, p.bias_instability_time_s,
+          0.0625 * p.bias_max_rad_s * p.bias_max_rad_s};
+}
+
+}  // namespace
+
 GyroBiasEstimator::GyroBiasEstimator(const EstimatorParams& p)
     : p_(p),
       rest_(p),
-      // Per axis a quarter of the clamp on the magnitude (0.05 rad/s with the default 0.2):
-      // 6 deg/s on one axis is 2.1 sigma, and the clamp 4 sigma of one axis.
-      initial_variance_(0.0625 * p.bias_max_rad_s * p.bias_max_rad_s),
+      state_(driftingBiasParams(p)),
+      P_(state_.covariance()),
       horizontal_rows_(p.accel_prefilter_time_constant_s),
-      spread_{TurnSpread(tiltTimeConstantS(p)), TurnSpread(tiltTimeConstantS(p))} {
-  P_ = initial_variance_ * Mat3::Identity();
-  before_last_block_.P = P_;
-}
+      spread_{TurnSpread(tiltTimeConstantS(p)), TurnSpread(tiltTimeConstantS(p))},
+      before_last_block_{state_, 0.0, 0, {}, false} {}
 
 const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT,
                                       double dt_s) {
-  // The bias wanders: P grows by walk² dt, up to what nothing at all is known.
-  const double growth = p_.bias_walk_rad_s_per_sqrt_s * p_.bias_walk_rad_s_per_sqrt_s * dt_s;
-  for (int i = 0; i < 3; ++i) {
-    if (P_(i, i) < initial_variance_) P_(i, i) += growth;
-    // What the state was before the last block wanders alike, so that it can take its place.
-    if (before_last_block_.P(i, i) < initial_variance_) before_last_block_.P(i, i) += growth;
-  }
+  state_.predict(dt_s);
+  // What the state was before the last block drifts alike, so that it can take its place.
+  before_last_block_.state.predict(dt_s);
+  settle();
   switch (rest_.update(gyro_rad_s, accel_m_s2, mag_uT, dt_s)) {
     case RestDetector::News::kNone:
       return bias_;
     case RestDetector::News::kNewBlock:
-      before_last_block_ = {bias_, P_, rest_seconds_, still_blocks_, previous_outlier_, has_previous_outlier_};
+      before_last_block_ = {state_, rest_seconds_, still_blocks_, previous_outlier_, has_previous_outlier_};
       break;
     case RestDetector::News::kLastBlockWithdrawn:
       restoreBeforeLastBlock();
@@ -86,7 +91,8 @@ const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_
     const bool confirmed = has_previous_outlier_ &&
                            between.dot((W + previous_outlier_.covariance).ldlt().solve(between)) <= kBlockNisLimit;
     if (confirmed) {
-      P_ += innovation * innovation.transpose();
+      state_.openUp(innovation);
+      P_ = state_.covariance();
       S = P_ + W;
       has_previous_outlier_ = false;
     } else {
@@ -97,18 +103,15 @@ const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_
   } else {
     has_previous_outlier_ = false;
   }
-  const Mat3 K = P_ * S.inverse();
-  bias_ += K * innovation;
-  P_ -= K * P_;
-  P_ = 0.5 * (P_ + P_.transpose());
-  clampBias();
+  state_.correct<3>(Mat3::Identity(), S, innovation);
+  settle();
   return bias_;
 }
 
 void GyroBiasEstimator::restoreBeforeLastBlock() {
   const StateBeforeBlock& before = before_last_block_;
-  bias_ = before.bias;
-  P_ = before.P;
+  state_ = before.state;
+  settle();
   rest_seconds_ = before.rest_seconds;
   still_blocks_ = before.still_blocks;
   previous_outlier_ = before.previous_outlier;
@@ -175,8 +178,7 @@ void GyroBiasEstimator::updateFromWindow() {
   const Eigen::Matrix<double, 2, 3>& H = horizontal_rows_.value();
   const double tau_walk = p_.bias_motion_time_constant_s * p_.bias_walk_rad_s_per_sqrt_s;
   const double nominal = tau_walk * tau_walk / window_s_;
-  const Eigen::Matrix<double, 3, 2> PHt = P_ * H.transpose();
-  Eigen::Matrix2d S = H * PHt;
+  Eigen::Matrix2d S = H * P_ * H.transpose();
   // The turns answer a change of the estimate only through the tilt's lag τ_c, so the update
   // is a loop: an integrator (the bias) behind a first-order lag, which rings or overshoots
   // when the integrator's time constant is short against τ_c (s² τ_c + s + 1/τ_i = 0: damping
@@ -190,18 +192,16 @@ void GyroBiasEstimator::updateFromWindow() {
   since_update_s_ = 0.0;
   S(0, 0) += std::max({nominal, W0, lag_factor * S(0, 0)});
   S(1, 1) += std::max({nominal, W1, lag_factor * S(1, 1)});
-  const Eigen::Matrix<double, 3, 2> K = PHt * S.inverse();
   const Eigen::Vector2d innovation = -window_turn_rad_ / window_s_;  // = H (b - b̂)
-  bias_ += K * clipped(innovation, p_.bias_max_rad_s);
-  P_ -= K * PHt.transpose();
-  P_ = 0.5 * (P_ + P_.transpose());
-  clampBias();
+  state_.correct<2>(H, S, clipped(innovation, p_.bias_max_rad_s));
+  settle();
 }
 
-void GyroBiasEstimator::clampBias() {
+void GyroBiasEstimator::settle() {
   // A larger estimate means rest or motion was misjudged: keep it at the plausible edge.
-  const double norm = bias_.norm();
-  if (norm > p_.bias_max_rad_s) bias_ *= p_.bias_max_rad_s / norm;
+  state_.clampTo(p_.bias_max_rad_s);
+  bias_ = state_.bias();
+  P_ = state_.covariance();
 }
 
 }  // namespace headingd::core

@@ -89,6 +89,8 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"rest_filter_time_constant_s", &P::rest_filter_time_constant_s, 1e-3, 60.0, "s"},
       {"rest_max_turn_rate_rad_s", &P::rest_max_turn_rate_rad_s, 0.0, 1.0, "rad/s"},
       {"bias_walk_rad_s_per_sqrt_s", &P::bias_walk_rad_s_per_sqrt_s, 1e-9, 1.0, "rad/s/sqrt(s)"},
+      {"bias_instability_rad_s", &P::bias_instability_rad_s, 0.0, 1.0, "rad/s"},
+      {"bias_instability_time_s", &P::bias_instability_time_s, 1e-3, 1e5, "s"},
       {"bias_time_constant_s", &P::bias_time_constant_s, 1e-3, 3600.0, "s"},
       {"bias_motion_time_constant_s", &P::bias_motion_time_constant_s, 0.0, 1e5, "s"},
       {"bias_motion_max_attitude_change", &P::bias_motion_max_attitude_change, 0.0, 10.0, "1"},

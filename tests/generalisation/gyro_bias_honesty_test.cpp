@@ -1,16 +1,21 @@
 // The gyro bias estimate is never learned wrong and never claims better than the data allow
-// (issue 28 item 3): on the simulator's phone scenarios (short opening rests, then carried:
-// texting, calling, swinging, pocket, running) at the phone, consumer and mems grades, each
+// (issue 28 item 3): on every simulator scenario with a motion to score (the six phone
+// scenarios: short opening rests, then carried, texting, calling, swinging, pocket, running;
+// and the urban walk, run, crawl, §6.3 declination walk, shaking along an axis and any
+// direction, hand-held and slow rotation) at the phone, consumer and mems grades, each
 // component of the estimate's error against the true bias (offset plus drift, sensor axes)
 // lies within 3 of its stated standard deviations in at least 99 % of the samples. Twelve
 // seeds: the phone grade draws each axis's constant bias up to 6 deg/s, and seeds 9 and 12
 // draw biases near or beyond the estimate's old clamp of 0.1 rad/s (seed 12: 0.112 rad/s in
-// all), which held them 8-11 mrad/s wrong (37-97 % of their samples within 3 sigma).
+// all), which held them 8-11 mrad/s wrong (37-97 % of their samples within 3 sigma). With the
+// walk alone as the bias's drift (no bias instability, drifting_bias.hpp) hand-held, crawl
+// and run at the phone grade failed in motion (seeds 7, 9, 6: 91.3, 98.2, 98.9 %).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "generalisation_support.hpp"
 #include "headingd/sim/phone_scenarios.hpp"
@@ -43,13 +48,19 @@ Honesty biasHonesty(const sim::SimResult& result) {
           std::sqrt(sum2 / static_cast<double>(count / 3))};
 }
 
-class PhoneClass : public ::testing::TestWithParam<std::tuple<std::string, sim::ImuGrade>> {};
+std::vector<std::string> motionScenarioNames() {
+  std::vector<std::string> names = {"urban-walk", "run", "crawl", "thesis-declination",
+                                    "shake", "shake-any", "handheld", "slow-rotation"};
+  for (std::string& name : sim::phoneScenarioNames()) names.push_back(std::move(name));
+  return names;
+}
 
-TEST_P(PhoneClass, TheBiasErrorLiesWithin3SigmaIn99PercentOfSamples) {
+class MotionClass : public ::testing::TestWithParam<std::tuple<std::string, sim::ImuGrade>> {};
+
+TEST_P(MotionClass, TheBiasErrorLiesWithin3SigmaIn99PercentOfSamples) {
   const auto& [scenario, grade] = GetParam();
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
-    const sim::SimResult result =
-        sim::simulate(sim::simConfig(scenario, seed, grade, 100.0), sim::phoneScenario(scenario, seed), wmm());
+    const sim::SimResult result = sim::simulate(sim::simConfig(scenario, seed, grade, 100.0), wmm());
     const Honesty h = biasHonesty(result);
     std::printf("%s seed %llu, %s: %.2f %% within 3 sigma, RMS error %.2f mrad/s\n", scenario.c_str(),
                 static_cast<unsigned long long>(seed), sim::imuGradeName(grade), 100.0 * h.share_within_3_sigma,
@@ -58,8 +69,8 @@ TEST_P(PhoneClass, TheBiasErrorLiesWithin3SigmaIn99PercentOfSamples) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(GyroBiasHonesty, PhoneClass,
-                         ::testing::Combine(::testing::ValuesIn(sim::phoneScenarioNames()),
+INSTANTIATE_TEST_SUITE_P(GyroBiasHonesty, MotionClass,
+                         ::testing::Combine(::testing::ValuesIn(motionScenarioNames()),
                                             ::testing::Values(sim::ImuGrade::kPhone, sim::ImuGrade::kConsumer,
                                                               sim::ImuGrade::kMems)),
                          [](const auto& info) {

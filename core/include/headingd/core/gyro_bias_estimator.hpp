@@ -1,7 +1,7 @@
 #pragma once
-// Gyroscope bias: a three-state Kalman filter (the bias in sensor axes) with two kinds of
-// measurement, so that every source of information about the bias counts and none can lock
-// a wrong estimate in.
+// Gyroscope bias: a Kalman filter of the bias in sensor axes (a walk plus an instability, six
+// states: drifting_bias.hpp) with two kinds of measurement, so that every source of
+// information about the bias counts and none can lock a wrong estimate in.
 //
 //  - At rest (rest_detector.hpp) the mean rate ω̄ is the bias (Earth's 15°/h is far below
 //    the noise of body-worn MEMS gyros): measurement y = ω̄, H = I. A block far outside the
@@ -37,9 +37,10 @@
 // The same structure carries VQF's motion bias estimation (Laidig & Seel 2023); MAGYQ
 // (Renaudin & Combettes 2014, §3) keeps the gyro bias as filter states for the same reason.
 //
-// Every coefficient comes from a time: the bias wanders as a random walk of
-// bias_walk_rad_s_per_sqrt_s; a measurement process of noise density N gives, in steady state,
-// a filter that follows with time constant τ = √(N / walk²). So N = τ² walk² for the rest
+// The bias drifts as drifting_bias.hpp says: a random walk of bias_walk_rad_s_per_sqrt_s plus
+// the gyro's bias instability (bias_instability_rad_s over bias_instability_time_s).
+// Every coefficient comes from a time: with the walk, a measurement process of noise
+// density N gives, in steady state, a filter that follows with time constant τ = √(N / walk²). So N = τ² walk² for the rest
 // (bias_time_constant_s) and for the motion measurement (bias_motion_time_constant_s), and a
 // sample of period dt is a measurement of variance N / dt: the filter behaves the same at
 // any sample rate.
@@ -47,6 +48,7 @@
 #include <array>
 #include <cstdint>
 
+#include "headingd/core/drifting_bias.hpp"
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/low_pass.hpp"
 #include "headingd/core/quaternion.hpp"
@@ -82,7 +84,9 @@ class GyroBiasEstimator {
   const Mat3& covariance() const { return P_; }
 
  private:
-  void clampBias();
+  // After every change of state_: its bias and covariance (what bias() and covariance() give),
+  // kept at most bias_max_rad_s.
+  void settle();
 
   // The spread of one component of the turns per second (see the top): low-passed with the
   // correlation time τ_c, then their variance about their own mean over 10 τ_c (running
@@ -104,9 +108,9 @@ class GyroBiasEstimator {
   // reference would keep pointing into the object it was copied from. A few hundred bytes.
   EstimatorParams p_;
   RestDetector rest_;
-  Vec3 bias_ = Vec3::Zero();
-  Mat3 P_;
-  double initial_variance_;
+  DriftingBias state_;
+  Vec3 bias_ = Vec3::Zero();  // of state_
+  Mat3 P_;                    // of state_
   void updateFromWindow();
 
   LowPass<Eigen::Matrix<double, 2, 3>> horizontal_rows_;  // R̄_h, updated once a window
@@ -123,8 +127,7 @@ class GyroBiasEstimator {
   // The rest part of the state before the last still block, for when the rest detector
   // revises or withdraws that block (a motion found just after it: rest_detector.hpp).
   struct StateBeforeBlock {
-    Vec3 bias = Vec3::Zero();
-    Mat3 P = Mat3::Zero();
+    DriftingBias state;
     double rest_seconds = 0.0;
     std::uint64_t still_blocks = 0;
     RestBlock previous_outlier;
