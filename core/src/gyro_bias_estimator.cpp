@@ -24,10 +24,6 @@ V clipped(const V& e, double limit) {
   return e.cwiseMax(-limit).cwiseMin(limit);
 }
 
-}  // namespace
-
-namespace {
-
 DriftingBias::Params driftingBiasParams(const EstimatorParams& p) {
   // Per axis a quarter of the clamp on the magnitude (0.05 rad/s with the default 0.2):
   // 6 deg/s on one axis is 2.1 sigma, and the clamp 4 sigma of one axis.

@@ -40,10 +40,10 @@
 // The bias drifts as drifting_bias.hpp says: a random walk of bias_walk_rad_s_per_sqrt_s plus
 // the gyro's bias instability (bias_instability_rad_s over bias_instability_time_s).
 // Every coefficient comes from a time: with the walk, a measurement process of noise
-// density N gives, in steady state, a filter that follows with time constant τ = √(N / walk²). So N = τ² walk² for the rest
-// (bias_time_constant_s) and for the motion measurement (bias_motion_time_constant_s), and a
-// sample of period dt is a measurement of variance N / dt: the filter behaves the same at
-// any sample rate.
+// density N gives, in steady state, a filter that follows with time constant τ = √(N / walk²).
+// So N = τ² walk² for the rest (bias_time_constant_s) and for the motion measurement
+// (bias_motion_time_constant_s), and a sample of period dt is a measurement of variance N / dt:
+// the filter behaves the same at any sample rate.
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
