@@ -15,7 +15,11 @@ void DriftingBias::predict(double dt_s) {
     if (P_(i, i) < p_.initial_variance) P_(i, i) += growth;
   }
   if (p_.instability_rad_s <= 0.0) return;
-  const double decay = std::exp(-dt_s / p_.instability_time_s);
+  if (dt_s != decay_dt_s_) {  // the IMU's period, nearly always the last one
+    decay_dt_s_ = dt_s;
+    decay_ = std::exp(-dt_s / p_.instability_time_s);
+  }
+  const double decay = decay_;
   x_.tail<3>() *= decay;
   P_.bottomRows<3>() *= decay;  // g's rows and columns; its own block twice
   P_.rightCols<3>() *= decay;

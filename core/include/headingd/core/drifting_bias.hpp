@@ -66,6 +66,7 @@ class DriftingBias {
   Params p_;
   Vec6 x_ = Vec6::Zero();  // c, then g
   Mat6 P_ = Mat6::Zero();
+  double decay_dt_s_ = -1.0, decay_ = 1.0;  // e^(-dt/τ) for the last dt
 };
 
 }  // namespace headingd::core
