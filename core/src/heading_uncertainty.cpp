@@ -7,7 +7,7 @@
 namespace headingd::core {
 namespace {
 
-constexpr int kE = 0, kB = 1, kU = 2;
+constexpr int kE = 0, kB = 1, kA = 2, kP = 3;
 
 // Standard deviation of an angle uniform on the circle: π/√3 (104°).
 const double kUnknownSigmaRad = std::numbers::pi / std::sqrt(3.0);
@@ -23,7 +23,7 @@ constexpr double kMinNoiseVariance = 1e-8;  // rad², (0.006°)²
 
 // Sets b's variance, keeping its correlations (P stays positive semi-definite); returns the
 // factor b's standard deviation changed by.
-double setRateVariance(Eigen::Matrix3d& P, double variance) {
+double setRateVariance(Eigen::Matrix4d& P, double variance) {
   if (P(kB, kB) <= 0.0) {
     P(kB, kB) = variance;
     return 1.0;
@@ -35,20 +35,17 @@ double setRateVariance(Eigen::Matrix3d& P, double variance) {
   return scale;
 }
 
-// e ← e + b dt.
-void integrateRate(Eigen::Matrix3d& P, double dt_s) {
-  P(kE, kE) += 2.0 * dt_s * P(kE, kB) + dt_s * dt_s * P(kB, kB);
-  P(kE, kB) += dt_s * P(kB, kB);
-  P(kE, kU) += dt_s * P(kB, kU);
-  P(kB, kE) = P(kE, kB);
-  P(kU, kE) = P(kE, kU);
+// e ← e + b dt: P ← A P Aᵀ with A = I + dt (row e, column b).
+void integrateRate(Eigen::Matrix4d& P, double dt_s) {
+  P.row(kE) += dt_s * P.row(kB);
+  P.col(kE) += dt_s * P.col(kB);
 }
 
-// u ← φ u + w, var w = (1 - φ²) steady.
-void decayField(Eigen::Matrix3d& P, double phi, double steady) {
-  P.row(kU) *= phi;
-  P.col(kU) *= phi;
-  P(kU, kU) += (1.0 - phi * phi) * steady;
+// x_i ← φ x_i + w, var w = (1 - φ²) steady.
+void decay(Eigen::Matrix4d& P, int i, double phi, double steady) {
+  P.row(i) *= phi;
+  P.col(i) *= phi;
+  P(i, i) += (1.0 - phi * phi) * steady;
 }
 
 }  // namespace
@@ -62,19 +59,19 @@ HeadingUncertainty::HeadingUncertainty(const HeadingUncertaintyParams& params)
 void HeadingUncertainty::forget() {
   known_ = false;
   // e is undefined until the field sets it: no correlation with b or u is kept.
-  for (Eigen::Matrix3d* P : {&P_, &shown_P_}) {
+  for (Eigen::Matrix4d* P : {&P_, &shown_P_}) {
     P->row(kE).setZero();
     P->col(kE).setZero();
   }
   shown_x_(kE) = 0.0;
 }
 
-void HeadingUncertainty::predict(double dt_s, double rate_variance) {
+void HeadingUncertainty::predict(double dt_s, double rate_variance, double attitude_turn_rad) {
   // b: the gyro bias filter's vertical variance, unless the integral term (or, for the
   // filter that has seen the innovations, the field) has shown more: then b's own variance,
   // which only they lower, is the smaller.
   const double walk = p_.rate_walk_rad_s_per_sqrt_s * p_.rate_walk_rad_s_per_sqrt_s * dt_s;
-  const auto b_variance = [&](const Eigen::Matrix3d& P) {
+  const auto b_variance = [&](const Eigen::Matrix4d& P) {
     return rate_started_ ? std::min(P(kB, kB) + walk, rate_variance) : rate_variance;
   };
   setRateVariance(P_, b_variance(P_));
@@ -85,17 +82,23 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance) {
     integrateRate(shown_P_, dt_s);
     shown_x_(kE) += dt_s * shown_x_(kB);
   }
-  const double phi = field_decay_(dt_s);
-  const double steady =
-      p_.field_sigma_rad * p_.field_sigma_rad + innovation_variance_ + p_.set_aside_share * set_aside_variance_;
-  if (!field_started_) {
-    P_(kU, kU) = shown_P_(kU, kU) = steady;  // the first sample: u in its steady state
+  const double phi_place = field_decay_(dt_s);
+  const double phi_attitude =
+      p_.field_turn_rad > 0.0 ? std::exp(-attitude_turn_rad / p_.field_turn_rad) : phi_place;
+  const double floor = p_.field_sigma_rad * p_.field_sigma_rad;
+  const double place = innovation_variance_ + p_.set_aside_share * set_aside_variance_;
+  if (!field_started_) {  // the first sample: a and p in their steady states
+    P_(kA, kA) = shown_P_(kA, kA) = floor;
+    P_(kP, kP) = shown_P_(kP, kP) = place;
     field_started_ = true;
     return;
   }
-  decayField(P_, phi, steady);
-  decayField(shown_P_, phi, steady);
-  shown_x_(kU) *= phi;
+  for (Eigen::Matrix4d* P : {&P_, &shown_P_}) {
+    decay(*P, kA, phi_attitude, floor);
+    decay(*P, kP, phi_place, place);
+  }
+  shown_x_(kA) *= phi_attitude;
+  shown_x_(kP) *= phi_place;
 }
 
 void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
@@ -120,16 +123,16 @@ void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
 }
 
 void HeadingUncertainty::showInnovation(double innovation_rad, double dt_s) {
-  // ν = u - e + n, H = (-1, 0, 1) (written out below). n's variance counts once per
+  // ν = a + p - e + n, H = (-1, 0, 1, 1) (written out below). n's variance counts once per
   // kInnovationMeanS: the innovations' fast part (magnetometer noise, the stride's tilt error
   // through the dip) is not white from sample to sample, and counted per sample it would say
   // the field's mean error known a hundred times too soon.
   if (!known_) return;
   const double noise = std::max(innovation_noise_variance_, kMinNoiseVariance) *
                        std::max(kInnovationMeanS / std::max(dt_s, 1e-6), 1.0);
-  const Eigen::Vector3d PHt = shown_P_.col(kU) - shown_P_.col(kE);
-  const double S = PHt(kU) - PHt(kE) + noise;
-  shown_x_ += PHt * ((innovation_rad - shown_x_(kU) + shown_x_(kE)) / S);
+  const Eigen::Vector4d PHt = shown_P_.col(kA) + shown_P_.col(kP) - shown_P_.col(kE);
+  const double S = PHt(kA) + PHt(kP) - PHt(kE) + noise;
+  shown_x_ += PHt * ((innovation_rad - shown_x_(kA) - shown_x_(kP) + shown_x_(kE)) / S);
   // P - P Hᵀ H P / S: a symmetric rank-one downdate.
   shown_P_.noalias() -= PHt * (PHt.transpose() / S);
 }
@@ -141,21 +144,21 @@ void HeadingUncertainty::observeSetAside(double innovation_rad, double dt_s) {
 }
 
 void HeadingUncertainty::correct(double gain, double rate_gain) {
-  // x ← A x with e ← (1 - K) e + K u (innovation = ψ_mm - ψ = u - e) and b ← b + g (u - e)
-  // (the integral term's rate moves by g × innovation): P ← A P Aᵀ. The field sets the first
-  // heading outright: e = u from then on.
+  // x ← A x with e ← (1 - K) e + K u (u = a + p; innovation = ψ_mm - ψ = u - e) and
+  // b ← b + g (u - e) (the integral term's rate moves by g × innovation): P ← A P Aᵀ. The
+  // field sets the first heading outright: e = u from then on.
   const double keep = known_ ? 1.0 - gain : 0.0;
   const double take = known_ ? gain : 1.0;
   known_ = true;
-  const auto transform = [&](auto&& e, auto&& b, const auto& u) {  // rows, then columns
-    b += rate_gain * (u - e);
-    e = keep * e + take * u;
+  const auto transform = [&](auto&& e, auto&& b, const auto& a, const auto& p) {  // rows, then columns
+    b += rate_gain * (a + p - e);
+    e = keep * e + take * (a + p);
   };
-  for (Eigen::Matrix3d* P : {&P_, &shown_P_}) {
-    transform(P->row(kE), P->row(kB), P->row(kU));
-    transform(P->col(kE), P->col(kB), P->col(kU));
+  for (Eigen::Matrix4d* P : {&P_, &shown_P_}) {
+    transform(P->row(kE), P->row(kB), P->row(kA), P->row(kP));
+    transform(P->col(kE), P->col(kB), P->col(kA), P->col(kP));
   }
-  transform(shown_x_(kE), shown_x_(kB), shown_x_(kU));
+  transform(shown_x_(kE), shown_x_(kB), shown_x_(kA), shown_x_(kP));
 }
 
 double HeadingUncertainty::sigmaRad() const {

@@ -60,6 +60,7 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"heading_field_sigma_rad", &P::heading_field_sigma_rad, 0.0, 3.2, "rad"},
       {"heading_field_correlation_s", &P::heading_field_correlation_s, 1e-3, 1e5, "s"},
       {"heading_field_set_aside_share", &P::heading_field_set_aside_share, 0.0, 10.0, "1"},
+      {"heading_field_turn_rad", &P::heading_field_turn_rad, 0.0, 100.0, "rad"},
       {"mag_min_horizontal_fraction", &P::mag_min_horizontal_fraction, 0.0, 1.0, "1"},
       {"mag_prefilter_time_constant_s", &P::mag_prefilter_time_constant_s, 0.0, 10.0, "s"},
       {"mag_disturbance_time_constant_s", &P::mag_disturbance_time_constant_s, 1e-3, 600.0, "s"},

@@ -42,9 +42,12 @@ class MonteCarlo {
       d.u = rng_.normal(p.field_sigma_rad);
     }
   }
-  void step(HeadingUncertainty& model, const Step& s) {
-    model.predict(kDt, rate_sigma_ * rate_sigma_);
-    const double phi = std::exp(-kDt / p_.field_correlation_s);
+  // turn_rad: the attitude's net turn this step, over which the field's error decorrelates
+  // when the class is told so (field_turn_rad); else it does with time.
+  void step(HeadingUncertainty& model, const Step& s, double turn_rad = 0.0) {
+    model.predict(kDt, rate_sigma_ * rate_sigma_, turn_rad);
+    const double phi = p_.field_turn_rad > 0.0 ? std::exp(-turn_rad / p_.field_turn_rad)
+                                               : std::exp(-kDt / p_.field_correlation_s);
     const double w = p_.field_sigma_rad * std::sqrt(1.0 - phi * phi);
     for (Draw& d : draws_) {
       d.e += d.b * kDt;
@@ -119,6 +122,44 @@ TEST(HeadingUncertainty, WithTheIntegralTermTheRateErrorItLearnsLeavesTheSpread)
   EXPECT_NEAR(model.sigmaRad() / mc.spreadOfE(), 1.0, 0.08);  // 1000 draws: 2.2 % per σ
   // The integral term has learned most of the rate error, and the class knows it.
   EXPECT_LT(model.rateSigmaRadS(), 0.3 * rate_sigma);
+}
+
+TEST(HeadingUncertainty, ASensorThatKeepsItsAttitudeKeepsItsCalibrationsResidual) {
+  // A calibration's residual hard iron is in the sensor's axes: a sensor shaken in place keeps
+  // one field error for as long as it keeps its attitude, and after a few of the observer's
+  // time constants the heading's error is that error. The class says so when told that the
+  // floor's part decorrelates with the attitude's turn; taken as decorrelating with time
+  // (the person moves on) it states a fraction of it.
+  HeadingUncertaintyParams p{2.5 * kDeg, 30.0, 0.0};
+  p.field_turn_rad = 1.19;
+  HeadingUncertaintyParams by_time = p;
+  by_time.field_turn_rad = 0.0;
+  const double rate_sigma = 0.0005;
+  HeadingUncertainty model(p), model_by_time(by_time);
+  MonteCarlo mc(p, rate_sigma, 1000, 13);
+  const double gain = magObserverGain(kDt, 15.0);
+  for (int i = 0; i < 30'000; ++i) {  // 300 s
+    mc.step(model, {true, gain, 0.0}, 0.0);
+    model_by_time.predict(kDt, rate_sigma * rate_sigma, 0.0);
+    model_by_time.correct(gain, 0.0);
+  }
+  EXPECT_NEAR(model.sigmaRad() / mc.spreadOfE(), 1.0, 0.08);  // 1000 draws: 2.2 % per σ
+  EXPECT_LT(model_by_time.sigmaRad(), 0.9 * mc.spreadOfE());
+}
+
+TEST(HeadingUncertainty, ATurningSensorShowsItsResidualFromNewSidesAndTheSigmaFollows) {
+  // The same residual on a sensor that keeps turning (0.2 rad/s): the field's error changes
+  // with the attitude (correlated over 1.19 / 0.2 = 6 s), the observer (15 s) averages it to
+  // about √(6 / 21) of the floor, and the class states that smaller spread.
+  HeadingUncertaintyParams p{2.5 * kDeg, 30.0, 0.0};
+  p.field_turn_rad = 1.19;
+  const double rate_sigma = 0.0005;
+  HeadingUncertainty model(p);
+  MonteCarlo mc(p, rate_sigma, 1000, 17);
+  const double gain = magObserverGain(kDt, 15.0);
+  for (int i = 0; i < 30'000; ++i) mc.step(model, {true, gain, 0.0}, 0.2 * kDt);
+  EXPECT_NEAR(model.sigmaRad() / mc.spreadOfE(), 1.0, 0.08);
+  EXPECT_LT(model.sigmaRad(), 0.6 * p.field_sigma_rad);
 }
 
 TEST(HeadingUncertainty, AFieldThatShowsItsErrorsRaisesTheSigma) {

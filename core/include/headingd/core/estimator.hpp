@@ -23,6 +23,7 @@
 #include "headingd/core/heading_corrections.hpp"
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/core/heading_uncertainty.hpp"
+#include "headingd/core/net_turn.hpp"
 #include "headingd/core/imu_sample.hpp"
 #include "headingd/core/vector_delay_estimator.hpp"
 #include "headingd/core/mag_disturbance.hpp"
@@ -178,6 +179,7 @@ class Estimator {
   HeadingDefinitionSelector heading_definition_;
   MagDisturbanceDetector mag_disturbance_;
   HeadingUncertainty heading_uncertainty_;
+  NetTurn attitude_net_turn_;  // how far the attitude has moved, for heading_uncertainty_
   VectorDelayEstimator mag_delay_;    // the magnetometer's delay against the gyro
   VectorDelayEstimator accel_delay_;  // the accelerometer's
   double mag_seconds_ = 0.0;  // time since the first usable field sample
