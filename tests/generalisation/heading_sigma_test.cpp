@@ -56,6 +56,25 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
+// A sensor shaken in place hardly turns, so its calibration's residual hard iron makes one
+// field error for the whole run, which the sigma must cover as such (heading_field_turn_rad:
+// decorrelating with time, the model let the observer average it, and shake and shake-any
+// mems were at 88.9 / 89.0 % over these seeds; now 94.1 %). One draw per run: 30 seeds.
+TEST(HeadingSigma, ASensorShakenInPlaceKeepsOneFieldErrorAndTheSigmaCoversIt) {
+  for (const char* scenario : {"shake", "shake-any"}) {
+    for (const sim::ImuGrade grade : {sim::ImuGrade::kMems, sim::ImuGrade::kConsumer}) {
+      double sum = 0.0;
+      constexpr int kSeeds = 30;
+      for (int seed = 1; seed <= kSeeds; ++seed) {
+        sum += shareWithin2Sigma(simulated(scenario, static_cast<std::uint64_t>(seed), grade), false);
+      }
+      const double share = sum / kSeeds;
+      std::printf("%s, %s, seeds 1-30: %.1f %% within 2 sigma\n", scenario, sim::imuGradeName(grade), 100.0 * share);
+      EXPECT_GE(share, kMinShareWithin2Sigma) << scenario << ", " << sim::imuGradeName(grade);
+    }
+  }
+}
+
 TEST(HeadingSigma, OnBroadAtLeast90PercentOfHeadingErrorsLieWithin2Sigma) {
   double sum = 0.0;
   const auto trials = broadTrials();
