@@ -176,4 +176,8 @@ double HeadingUncertainty::priorSigmaRad() const {
 
 double HeadingUncertainty::rateSigmaRadS() const { return std::sqrt(std::max(P_(kB, kB), 0.0)); }
 
+double HeadingUncertainty::shownRateRadS() const { return shown_x_(kB); }
+
+double HeadingUncertainty::shownRateSigmaRadS() const { return std::sqrt(std::max(shown_P_(kB, kB), 0.0)); }
+
 }  // namespace headingd::core

@@ -91,16 +91,19 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
          "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
          "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms,"
          "tilt_sigma_deg,mag_norm_jump,mag_dip_jump,dip_deg,true_dip_deg,heading_prior_sigma_deg,mag_dip_deviation_deg,"
-         "field_heading_error_deg,tilt_heading_error_deg,vertical_error_deg\n";
+         "field_heading_error_deg,tilt_heading_error_deg,vertical_error_deg,shown_rate_error_mrad_s,"
+         "shown_rate_error_sigma_mrad_s,true_rate_error_mrad_s\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
-  std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas, dip_deviations;
+  std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas, dip_deviations, shown_rates, shown_rate_sigmas;
   std::vector<std::pair<double, double>> accel_delays;  // the regression's estimate and sigma
   const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
     outputs.push_back(e.output());
     accel_delays.emplace_back(e.accelDelay().estimateS(), e.accelDelay().sigmaS());
     rate_sigmas.push_back(e.headingUncertainty().rateSigmaRadS());
     prior_sigmas.push_back(e.headingUncertainty().priorSigmaRad());
+    shown_rates.push_back(e.headingUncertainty().shownRateRadS());
+    shown_rate_sigmas.push_back(e.headingUncertainty().shownRateSigmaRadS());
     dip_deviations.push_back(e.magDisturbance().dipDeviation());
     // tilt_sigma_deg: the EKF's own 1-sigma of the tilt, √ of its covariance about north plus east.
     tilt_sigmas.push_back(std::sqrt(e.ekf().tiltCovariance().trace()));
@@ -120,7 +123,12 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   // times the tilt's error about magnetic north (the innovation through the published attitude
   // less the one through the reference's, plus the estimate's turn about the vertical, which
   // the first difference holds too). vertical_error_deg: that turn (signed).
-  char line[704];
+  // shown_rate_error_mrad_s and its sigma: what the heading sigma's filter that has seen the
+  // innovations makes of the rate error about the vertical (heading_uncertainty.hpp);
+  // true_rate_error_mrad_s: the rate error itself, the bias-corrected gyro about NED down and
+  // the integral term's correction, less the reference's rate (from its attitude at the next
+  // sample).
+  char line[800];
   for (std::size_t i = 0; i < r.size(); ++i) {
     const auto& o = outputs[i];
     const auto e = core::eulerZyx(o.q_nb);
@@ -135,13 +143,22 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     // The estimate's turn from the reference about NED down (signed; the twist of q q_ref⁻¹).
     const core::Quat turn = o.q_nb * r.truth_nb[i].conjugate();
     const double vertical_error_rad = 2.0 * std::atan(turn.z() / turn.w());
+    double true_rate_error = nan;
+    if (i + 1 < r.size() && r.samples[i + 1].t_ns > r.samples[i].t_ns) {
+      const double dt_s = 1e-9 * static_cast<double>(r.samples[i + 1].t_ns - r.samples[i].t_ns);
+      core::Quat step = r.truth_nb[i].conjugate() * r.truth_nb[i + 1];
+      if (step.w() < 0.0) step.coeffs() = -step.coeffs();
+      const core::Vec3 reference_rate = 2.0 * step.vec() / dt_s;  // body axes
+      const core::Vec3 error = r.samples[i].gyro_rad_s - o.gyro_bias_rad_s - reference_rate;
+      true_rate_error = (r.truth_nb[i] * error).z() + o.vertical_rate_correction_rad_s;  // turned in, too
+    }
     const double tilt_error_deg =
         through_truth.valid && through_estimate.valid
             ? wrapped_deg(through_estimate.innovation_rad - through_truth.innovation_rad + vertical_error_rad)
             : nan;
     std::snprintf(line, sizeof line,
                   "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
@@ -155,7 +172,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   tilt_sigmas[i] * kDeg, o.mag_disturbance.norm_jump ? 1 : 0, o.mag_disturbance.dip_jump ? 1 : 0,
                   dipDeg(through_estimate), dipDeg(through_truth),
                   prior_sigmas[i] * kDeg, dip_deviations[i] * kDeg, field_error_deg, tilt_error_deg,
-                  vertical_error_rad * kDeg);
+                  vertical_error_rad * kDeg, 1e3 * shown_rates[i], 1e3 * shown_rate_sigmas[i], 1e3 * true_rate_error);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());

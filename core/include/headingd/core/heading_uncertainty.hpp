@@ -93,6 +93,10 @@ class HeadingUncertainty {
   double priorSigmaRad() const;
   // Standard deviation of b, the rate error about the vertical (rad/s).
   double rateSigmaRadS() const;
+  // What the filter that has seen the innovations makes of b (rad/s) and its standard
+  // deviation: a diagnosis (headingd-study --trace); the estimate does not use it.
+  double shownRateRadS() const;
+  double shownRateSigmaRadS() const;
 
  private:
   // The Kalman update of the filter that has seen the innovations.
