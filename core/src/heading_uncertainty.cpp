@@ -83,8 +83,10 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance, double attit
     shown_x_(kE) += dt_s * shown_x_(kB);
   }
   const double phi_place = field_decay_(dt_s);
-  const double phi_attitude =
-      p_.field_turn_rad > 0.0 ? std::exp(-attitude_turn_rad / p_.field_turn_rad) : phi_place;
+  // Most samples turn by nothing (NetTurn counts in steps): no exp for them.
+  const double phi_attitude = p_.field_turn_rad <= 0.0 ? phi_place
+                              : attitude_turn_rad > 0.0 ? std::exp(-attitude_turn_rad / p_.field_turn_rad)
+                                                        : 1.0;
   const double floor = p_.field_sigma_rad * p_.field_sigma_rad;
   const double place = innovation_variance_ + p_.set_aside_share * set_aside_variance_;
   if (!field_started_) {  // the first sample: a and p in their steady states

@@ -143,15 +143,8 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     // The estimate's turn from the reference about NED down (signed; the twist of q q_ref⁻¹).
     const core::Quat turn = o.q_nb * r.truth_nb[i].conjugate();
     const double vertical_error_rad = 2.0 * std::atan(turn.z() / turn.w());
-    double true_rate_error = nan;
-    if (i + 1 < r.size() && r.samples[i + 1].t_ns > r.samples[i].t_ns) {
-      const double dt_s = 1e-9 * static_cast<double>(r.samples[i + 1].t_ns - r.samples[i].t_ns);
-      core::Quat step = r.truth_nb[i].conjugate() * r.truth_nb[i + 1];
-      if (step.w() < 0.0) step.coeffs() = -step.coeffs();
-      const core::Vec3 reference_rate = 2.0 * step.vec() / dt_s;  // body axes
-      const core::Vec3 error = r.samples[i].gyro_rad_s - o.gyro_bias_rad_s - reference_rate;
-      true_rate_error = (r.truth_nb[i] * error).z() + o.vertical_rate_correction_rad_s;  // turned in, too
-    }
+    const core::Vec3 rate_error = r.samples[i].gyro_rad_s - o.gyro_bias_rad_s - study::referenceRate(r, i);
+    const double true_rate_error = (r.truth_nb[i] * rate_error).z() + o.vertical_rate_correction_rad_s;  // turned in, too
     const double tilt_error_deg =
         through_truth.valid && through_estimate.valid
             ? wrapped_deg(through_estimate.innovation_rad - through_truth.innovation_rad + vertical_error_rad)

@@ -61,4 +61,14 @@ void startOffBy(Recording& r, double angle_rad, std::uint64_t seed) {
   first.mag_uT = turn * first.mag_uT;
 }
 
+core::Vec3 referenceRate(const Recording& r, std::size_t i) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (i + 1 >= r.size() || !hasTruth(r.truth_nb[i]) || !hasTruth(r.truth_nb[i + 1])) return Vec3::Constant(nan);
+  const double dt_s = 1e-9 * static_cast<double>(r.samples[i + 1].t_ns - r.samples[i].t_ns);
+  if (!(dt_s > 0.0)) return Vec3::Constant(nan);
+  core::Quat step = r.truth_nb[i].conjugate() * r.truth_nb[i + 1];
+  if (step.w() < 0.0) step.coeffs() = -step.coeffs();
+  return 2.0 * step.vec() / dt_s;
+}
+
 }  // namespace headingd::study

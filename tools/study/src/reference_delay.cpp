@@ -60,11 +60,8 @@ double rateMismatch(const Recording& r, double shift_s) {
   double sum_sq = 0.0;
   std::size_t n = 0;
   for (std::size_t i = 0; i + 1 < r.size(); ++i) {
-    if (!hasTruth(r.truth_nb[i]) || !hasTruth(r.truth_nb[i + 1])) continue;
-    const double dt = seconds(r, i + 1) - seconds(r, i);
-    if (!(dt > 0.0)) continue;
-    const Vec3 reference = 2.0 * (r.truth_nb[i].conjugate() * r.truth_nb[i + 1]).vec() / dt;
-    if (reference.norm() > 20.0) continue;  // a marker swap, not a turn
+    const Vec3 reference = referenceRate(r, i);
+    if (!reference.allFinite() || reference.norm() > 20.0) continue;  // unknown, or a marker swap
     const double mid = 0.5 * (seconds(r, i) + seconds(r, i + 1));
     const Vec3 gyro = interpolate(r, mid + shift_s, [](const core::ImuSample& s) { return s.gyro_rad_s; });
     if (!gyro.allFinite()) continue;

@@ -36,4 +36,9 @@ void startOffBy(Recording& r, double angle_rad, std::uint64_t seed);
 // The true attitude, NaN quaternion for "unknown".
 inline bool hasTruth(const core::Quat& q) { return q.coeffs().allFinite(); }
 
+// The reference's rate from sample i to i + 1, in the sensor's axes (rad/s): the turn between
+// the two true attitudes over the time between them (q and -q alike). NaN where either is
+// unknown or the time does not advance.
+core::Vec3 referenceRate(const Recording& r, std::size_t i);
+
 }  // namespace headingd::study
