@@ -116,8 +116,11 @@ void HeadingUncertainty::observeInnovation(double innovation_rad, double dt_s) {
   const double about_mean = innovation_rad - innovation_mean_rad_;
   innovation_noise_variance_ += startedLowPassWeight(innovation_seen_s_, dt_s, 1.0 - field_sample_decay_(dt_s)) *
                                 (about_mean * about_mean - innovation_noise_variance_);
-  showInnovation(innovation_rad, dt_s);
+  // The filter that has seen the innovations waits for their noise as the spread does: from
+  // a few samples their spread about their mean is near zero, and the first innovations,
+  // taken as noiseless, "showed" a rate error of a rad/s that took minutes to unlearn.
   if (innovation_seen_s_ < kInnovationMeanS) return;
+  showInnovation(innovation_rad, dt_s);
   const double spread_seen_s = innovation_seen_s_ - kInnovationMeanS + dt_s;
   const double squared = innovation_mean_rad_ * innovation_mean_rad_;
   innovation_variance_ +=
@@ -165,11 +168,9 @@ void HeadingUncertainty::correct(double gain, double rate_gain) {
 
 double HeadingUncertainty::sigmaRad() const {
   if (!known_) return kUnknownSigmaRad;
-  // The smaller of the two (measured: heading-sigma.md). Where the estimator's steps alone
-  // bound the error well (the bias learned at rest) the filter's estimate ê adds its own
-  // spread; where they do not (no rest: the bias filter's prior) the innovations show more.
-  const double shown = std::max(shown_P_(kE, kE), 0.0) + shown_x_(kE) * shown_x_(kE);
-  return std::sqrt(std::min(shown, std::max(P_(kE, kE), 0.0)));
+  // The expected squared error given the innovations: the posterior variance plus the
+  // estimated error's square (ê is not taken off the heading).
+  return std::sqrt(std::max(shown_P_(kE, kE), 0.0) + shown_x_(kE) * shown_x_(kE));
 }
 
 double HeadingUncertainty::priorSigmaRad() const {

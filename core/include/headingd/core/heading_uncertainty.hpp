@@ -33,12 +33,13 @@
 // drift to b τ and stay there, so a minute of small innovations says b is small. Beside it a
 // Kalman filter over the same (e, b, a, p), with the same steps, takes each used sample's
 // innovation as a measurement of u - e (its white noise learned from the innovations' spread
-// about their one-second mean) and estimates the estimator's own errors. The published σ is
-// the smaller of the first's √P_ee and the filter's posterior expected squared error
+// about their one-second mean, from the first second of them on) and estimates the
+// estimator's own errors. The published σ is that filter's expected squared error
 // √(P_ee + ê²): on a phone carried from the start (no rest, the bias filter's prior of tens
-// of mrad/s, 30-100° of heading σ) the second, once the field has shown the rate error
-// small. Neither changes the estimate; rateSigmaRadS() stays the first's (the restore of
-// eq. 4.4 is gated on it).
+// of mrad/s, 30-100° of heading σ before the innovations) it falls once the field has shown
+// the rate error small, and a steadier gyro than the bias filter assumes shows its rate error
+// as small too. Neither changes the estimate; rateSigmaRadS() stays the first's (the restore
+// of eq. 4.4 is gated on it).
 #include <Eigen/Core>
 
 #include "headingd/core/low_pass.hpp"
@@ -86,8 +87,7 @@ class HeadingUncertainty {
   void correct(double gain, double rate_gain);
 
   bool known() const { return known_; }
-  // The published 1-sigma: the smaller of priorSigmaRad() and √(P_ee + ê²) of the filter
-  // that has seen the innovations (above).
+  // The published 1-sigma: √(P_ee + ê²) of the filter that has seen the innovations (above).
   double sigmaRad() const;
   // The same before the innovations: what the estimator's steps alone imply.
   double priorSigmaRad() const;
