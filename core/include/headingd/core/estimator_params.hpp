@@ -271,8 +271,9 @@ struct EstimatorParams {
   // the urban walk at 99-100 % (3 seeds, 2026-12-05). Chosen again once the filter that has
   // seen the innovations waits for their noise and alone sets the published sigma
   // (heading_uncertainty.hpp): the pessimism of the bias filter's vertical variance no longer
-  // covered a still sensor's calibration residual, which for the simulator's calibrated parts
-  // held tilted at a dip of 72° is about 0.8 µT in a horizontal field of 16 µT, 2.9°. Over
+  // covered a still sensor's calibration residual (the simulator's calibrated parts: about
+  // 0.65 µT in 16 µT of horizontal field at a dip of 72°, 2.3°, plus a shaken sensor's tilt
+  // error through the dip). Over
   // seeds 1-30 of the 84 classes (below 90 / within / above 97 %; worst class): 2.5° 4 / 19 /
   // 61 (87.4 %, shake mems 100 Hz 89.6 %); 2.6° 2 / 18 / 64; 2.75° 1 / 18 / 65 (89.7 %);
   // 2.875° 0 / 16 / 68; 2.9° 0 / 16 / 68 (90.0 %, shake-any phone 50 Hz); 3.0° 0 / 11 / 73
