@@ -79,7 +79,11 @@ Estimator::Estimator(const EstimatorParams& params)
       mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}),
       accel_delay_({p_.accel_delay_max_s, p_.accel_delay_time_constant_s, p_.accel_delay_apply_below_sigma_s,
                     kAccelDelayMinSpanS, /*repeats_are_holds=*/false}),
-      vertical_rate_error_(p_) {}
+      vertical_rate_error_(p_),
+      qsf_mag_({p_.qsf_mag_window_s, p_.qsf_mag_reference_s, p_.qsf_mag_max_norm_rms_uT,
+                p_.qsf_mag_max_norm_deviation_uT, p_.qsf_mag_max_direction_rms_uT}),
+      qsf_accel_({p_.qsf_accel_window_s, p_.qsf_accel_reference_s, p_.qsf_accel_max_norm_rms_m_s2,
+                  p_.qsf_accel_max_norm_deviation_m_s2, p_.qsf_accel_max_direction_rms_m_s2}) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
   out_.dt_s = 0.0;
@@ -112,6 +116,9 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       mag_disturbance_.restart();
       mag_delay_.restartChain();  // the delays learned so far stay: they are the sensors'
       accel_delay_.restartChain();
+      qsf_mag_.restart();
+      qsf_accel_.restart();
+      qsf_mag_dt_s_ = 0.0;
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
       heading_corrections_.restart(vertical_rate_error_.rateRadS());
       ekf_.setCovariance(kStartupCovariance);
@@ -186,6 +193,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   mag_delay_.update(gyro, mag_usable ? &s.mag_uT : nullptr, mag_clean, dt_s);
   const Vec3 mag_now = turnedToNow(mag_delay_, s.mag_uT, gyro, down_s, mag_clean, dt_s, &out_.mag_lag_s);
   const Vec3 gravity_measurement = accel_prefilter_.update(increment, accel_now, dt_s, turning);
+  detectQuasiStaticFields(s, increment, accel_now, mag_now, mag_usable, dt_s);
 
   // Henriksson §3.1 also goes back to a gyro-only background attitude whenever the level
   // steps up. headingd does not: that attitude has run on the gyro alone for 5-10 s, and
@@ -318,6 +326,22 @@ void Estimator::correctHeading(const Vec3& mag_uT, double field_period_s, double
   out_.mag_innovation_rad = m.innovation_rad;
 }
 
+void Estimator::detectQuasiStaticFields(const ImuSample& s, const Quat& increment, const Vec3& accel_now,
+                                        const Vec3& mag_now, bool mag_usable, double dt_s) {
+  qsf_frame_.advance(increment);
+  out_.accel_quasi_static = qsf_accel_.add(accel_now, qsf_frame_.frameFromSensor(), dt_s);
+  // A magnetometer slower than the IMU repeats its last sample: only a new one is a sample
+  // of the field (a held one would count one reading's noise again).
+  qsf_mag_dt_s_ += dt_s;
+  if (mag_usable && s.mag_uT != qsf_last_mag_uT_) {
+    out_.mag_quasi_static = qsf_mag_.add(mag_now, qsf_frame_.frameFromSensor(), qsf_mag_dt_s_);
+    qsf_last_mag_uT_ = s.mag_uT;
+    qsf_mag_dt_s_ = 0.0;
+  } else if (!mag_usable) {
+    out_.mag_quasi_static = false;
+  }
+}
+
 void Estimator::predictHeadingUncertainty(double dt_s) {
   const Quat q = ekf_.attitude();
   const Vec3 down_s = q.conjugate() * Vec3::UnitZ();  // NED down in sensor axes
@@ -391,6 +415,11 @@ EstimatorCounters Estimator::counters() const {
   c.mag_heading_restores = mag_heading_restores_;
   c.state_recoveries = state_recoveries_;
   c.accel_clipped = accel_clipped_;
+  // Whole milliseconds of the seconds summed (a counter is an integer).
+  c.qsf_mag_periods = qsf_mag_.periods();
+  c.qsf_mag_ms = static_cast<std::uint64_t>(1000.0 * qsf_mag_.totalSeconds());
+  c.qsf_accel_periods = qsf_accel_.periods();
+  c.qsf_accel_ms = static_cast<std::uint64_t>(1000.0 * qsf_accel_.totalSeconds());
   return c;
 }
 

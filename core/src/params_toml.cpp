@@ -97,6 +97,16 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"bias_motion_max_attitude_change", &P::bias_motion_max_attitude_change, 0.0, 10.0, "1"},
       {"bias_motion_min_tilt_lags", &P::bias_motion_min_tilt_lags, 0.0, 100.0, "tilt time constants"},
       {"bias_max_rad_s", &P::bias_max_rad_s, 0.0, 1.0, "rad/s"},
+      {"qsf_mag_window_s", &P::qsf_mag_window_s, 0.0, 60.0, "s"},
+      {"qsf_mag_reference_s", &P::qsf_mag_reference_s, 0.0, 60.0, "s"},
+      {"qsf_mag_max_norm_rms_uT", &P::qsf_mag_max_norm_rms_uT, 0.0, 1000.0, "uT"},
+      {"qsf_mag_max_norm_deviation_uT", &P::qsf_mag_max_norm_deviation_uT, 0.0, 1000.0, "uT"},
+      {"qsf_mag_max_direction_rms_uT", &P::qsf_mag_max_direction_rms_uT, 0.0, 1000.0, "uT"},
+      {"qsf_accel_window_s", &P::qsf_accel_window_s, 0.0, 60.0, "s"},
+      {"qsf_accel_reference_s", &P::qsf_accel_reference_s, 0.0, 60.0, "s"},
+      {"qsf_accel_max_norm_rms_m_s2", &P::qsf_accel_max_norm_rms_m_s2, 0.0, 100.0, "m/s^2"},
+      {"qsf_accel_max_norm_deviation_m_s2", &P::qsf_accel_max_norm_deviation_m_s2, 0.0, 100.0, "m/s^2"},
+      {"qsf_accel_max_direction_rms_m_s2", &P::qsf_accel_max_direction_rms_m_s2, 0.0, 100.0, "m/s^2"},
   };
   return specs;
 }
@@ -140,6 +150,11 @@ void validateEstimatorParams(const EstimatorParams& p, const TomlTableReader& r)
           "rest_gyro_max_threshold_rad_s", "rest_gyro_threshold_rad_s must not exceed rest_gyro_max_threshold_rad_s");
   require(p.redefine_heading_enter < p.redefine_heading_leave, "redefine_heading_enter", "redefine_heading_leave",
           "redefine_heading_enter must be below redefine_heading_leave (hysteresis)");
+  // ξ_ref is the mean of the period's first samples, which are in its first window.
+  require(p.qsf_mag_reference_s <= p.qsf_mag_window_s, "qsf_mag_reference_s", "qsf_mag_window_s",
+          "qsf_mag_reference_s must not exceed qsf_mag_window_s (the reference norm comes from the first window)");
+  require(p.qsf_accel_reference_s <= p.qsf_accel_window_s, "qsf_accel_reference_s", "qsf_accel_window_s",
+          "qsf_accel_reference_s must not exceed qsf_accel_window_s (the reference norm comes from the first window)");
   // The two background headings restart every period, staggered by half of it, so the older
   // one is always between half a period and a period old (heading_corrections.hpp): a
   // maximum age below half the period would never let the restore happen.

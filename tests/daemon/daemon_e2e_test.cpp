@@ -139,7 +139,8 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
                                       "non_finite", "non_finite_mag", "out_of_range", "out_of_range_mag",
                                       "imu_rejected", "bias_still_blocks", "mag_no_heading", "mag_disturbed",
                                       "mag_heading_restores", "mag_calibration_set_aside",
-                                      "mag_calibration_taken_back", "state_recoveries", "accel_clipped", "gps_epochs",
+                                      "mag_calibration_taken_back", "state_recoveries", "accel_clipped", "qsf_mag_periods",
+                                      "qsf_mag_ms", "qsf_accel_periods", "qsf_accel_ms", "gps_epochs",
                                       "gps_epochs_used_for_declination", "gps_epochs_forced_out",
                                       "gps_values_ignored", "log_write_errors"}));
   EXPECT_EQ(last.num_counters, static_cast<std::int32_t>(last.counters.size()));

@@ -4,6 +4,7 @@
 //   headingd-study broad [--dir DIR] [--rate HZ ...] [--set key=value ...] [--config TOML]
 //   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--accel-lag-s S] [--set ...]
 //   ... --trace FILE  (one run: per-sample diagnostics as CSV)
+//   ... --qsf         (the quasi-static field periods and how still the field was in them)
 //   ... --anchors DIR (VQF and Fusion beside headingd: the drivers built by ../shared/anchors/build.sh;
 //                      then also each filter's fitted heading over the first 25 s and after)
 // The h<2s% column: the share of scored samples whose heading error is within twice the
@@ -32,6 +33,7 @@
 #include "headingd/files/numeric_csv.hpp"
 #include "headingd/sim/simulation.hpp"
 #include "headingd/study/anchors.hpp"
+#include "headingd/study/quasi_static_score.hpp"
 #include "headingd/study/reference_delay.hpp"
 #include "headingd/study/resample.hpp"
 #include "headingd/study/scoring.hpp"
@@ -97,7 +99,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   std::vector<std::uint64_t> still_blocks, restores;
   std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas, dip_deviations, shown_rates, shown_rate_sigmas;
   std::vector<std::pair<double, double>> accel_delays;  // the regression's estimate and sigma
-  const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
+  const const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
     outputs.push_back(e.output());
     accel_delays.emplace_back(e.accelDelay().estimateS(), e.accelDelay().sigmaS());
     rate_sigmas.push_back(e.headingUncertainty().rateSigmaRadS());
@@ -182,6 +184,7 @@ struct Row {
   std::vector<study::RunScore> anchors;  // one per --anchors filter, in findAnchors' order
   study::ReferenceDelays delays;         // with --reference-delays
   double learned_mag_lag_s = 0.0;        // the estimator's, median over the second half
+  study::QuasiStaticScore mag_qsf, accel_qsf;  // with --qsf
 };
 
 double medianOfSecondHalf(std::vector<double> v) {
@@ -205,6 +208,21 @@ void printReferenceDelays(const std::vector<Row>& rows) {
     std::printf("%-46s %7.1f | %6.0f %5.2f (%5.2f) | %6.0f | %8.1f\n", row.name.c_str(), row.rate_hz,
                 1e3 * row.delays.mag_s, row.delays.mag_spread_uT, row.delays.mag_spread_at_zero_uT,
                 1e3 * row.delays.gyro_s, 1e3 * row.learned_mag_lag_s);
+  }
+}
+
+void printQuasiStatic(const std::vector<Row>& rows) {
+  std::printf("\nquasi-static periods (quasi_static_field.hpp; --qsf): share of the samples, periods, their mean "
+              "length (s), and the vector's distance from the period's start through the reference attitude, "
+              "median / 95th percentile (field uT, specific force m/s^2)\n");
+  std::printf("%-46s %7s | %6s %5s %6s %6s %6s | %6s %5s %6s %6s %6s\n", "run", "Hz", "mag%", "per", "len", "med",
+              "p95", "acc%", "per", "len", "med", "p95");
+  for (const Row& row : rows) {
+    const auto& m = row.mag_qsf;
+    const auto& a = row.accel_qsf;
+    std::printf("%-46s %7.1f | %6.1f %5zu %6.1f %6.2f %6.2f | %6.1f %5zu %6.1f %6.3f %6.3f\n", row.name.c_str(),
+                row.rate_hz, 100.0 * m.share, m.periods, m.mean_period_s, m.median_drift, m.p95_drift,
+                100.0 * a.share, a.periods, a.mean_period_s, a.median_drift, a.p95_drift);
   }
 }
 
@@ -284,7 +302,11 @@ int main(int argc, char** argv) {
   std::string config, trace, anchors_dir;
   std::vector<std::string> sets;
   std::vector<double> rates;
+  bool quasi_static = false;
   auto common = [&](CLI::App* c) {
+    c->add_flag("--qsf", quasi_static,
+                "also print the quasi-static field and specific force periods the estimator found, and how still "
+                "each vector was in them through the reference attitude");
     c->add_option("--config", config, "TOML with an [estimator] table");
     c->add_option("--set", sets, "an [estimator] key = value, e.g. --set 'gyro_noise_rad_s = 0.03' (repeatable)");
     c->add_option("--rate", rates, "resample to these rates in Hz (repeatable; none: the recording's own)");
@@ -373,16 +395,30 @@ int main(int argc, char** argv) {
         }
       }
       std::vector<double> sigmas, mag_lags;
+      std::vector<bool> mag_qsf(r.size(), false), accel_qsf(r.size(), false);
+      std::vector<core::Vec3> mag_used, accel_used;  // with --qsf: each vector turned by its lag
       sigmas.reserve(r.size());
-      const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
+      const auto est = study::runEstimator(r, params, [&](std::size_t i, const core::Estimator& e) {
         sigmas.push_back(e.output().heading_sigma_rad);
         mag_lags.push_back(e.output().mag_lag_s);
+        const core::EstimatorOutput& o = e.output();
+        mag_qsf[i] = o.mag_quasi_static;
+        accel_qsf[i] = o.accel_quasi_static;
+        if (quasi_static) {
+          const core::Vec3 rate = r.samples[i].gyro_rad_s - o.gyro_bias_rad_s;
+          mag_used.push_back(core::turnedBySmallAngle(r.samples[i].mag_uT, -o.mag_lag_s * rate));
+          accel_used.push_back(core::turnedBySmallAngle(r.samples[i].accel_m_s2, -o.accel_lag_s * rate));
+        }
       });
       const double coverage =
           study::headingCoverage(r, *simulate ? est : study::alignedEstimates(r, est), sigmas, 2.0);
       rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg),
-                   coverage, {}, {}, 0.0};
+                   coverage, {}, {}, 0.0, {}, {}};
       for (const auto& a : anchors) rows[job].anchors.push_back(study::score(r, study::runAnchor(a, r)));
+      if (quasi_static) {
+        rows[job].mag_qsf = study::scoreQuasiStatic(r, mag_qsf, mag_used);
+        rows[job].accel_qsf = study::scoreQuasiStatic(r, accel_qsf, accel_used);
+      }
       if (reference_delays) {
         rows[job].delays = study::measureReferenceDelays(r);
         rows[job].learned_mag_lag_s = medianOfSecondHalf(std::move(mag_lags));
@@ -424,6 +460,7 @@ int main(int argc, char** argv) {
     }
     if (!anchors.empty()) printSideBySide(rows, rates, anchors);
     if (reference_delays) printReferenceDelays(rows);
+    if (quasi_static) printQuasiStatic(rows);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-study: %s\n", e.what());
     return 1;

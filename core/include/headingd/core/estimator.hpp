@@ -4,13 +4,15 @@
 //   gate (timestamps, NaN) → gyro bias (still blocks) → EKF predict (Henriksson eq. 3.2-3.3)
 //   → the specific force and the field turned by each sensor's learned delay
 //     (vector_delay_estimator.hpp)
-//   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → d_k and R level (eq. 3.1, 3.4,
+//   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → quasi-static field and specific
+//   force (MAGYQ §5, quasi_static_field.hpp; counted, not used yet) → d_k and R level (eq. 3.1, 3.4,
 //   hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's turn, in motion)
 //   → magnetometer heading observer (eq. 4.2, with an integral term for the vertical rate
 //   error) with the gyro-only heading restored at a
 //   disturbance's onset (eq. 4.4, heading_corrections.hpp) → the person's up axis learned
 //   while walking (body_up_axis.hpp) → heading definition (§3.3) for that axis.
 #include <cstdint>
+#include <limits>
 
 #include "headingd/core/accel_clipping.hpp"
 #include "headingd/core/accel_disturbance.hpp"
@@ -24,6 +26,7 @@
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/core/heading_uncertainty.hpp"
 #include "headingd/core/net_turn.hpp"
+#include "headingd/core/quasi_static_field.hpp"
 #include "headingd/core/imu_sample.hpp"
 #include "headingd/core/vector_delay_estimator.hpp"
 #include "headingd/core/mag_disturbance.hpp"
@@ -73,6 +76,9 @@ struct EstimatorOutput {
   double accel_lag_s = 0.0;
   // 1-sigma of yaw_rad's error (heading_uncertainty.hpp); π/√3 while the heading is unknown.
   double heading_sigma_rad = 0.0;
+  // The field / the specific force constant in the navigation frame (quasi_static_field.hpp).
+  bool mag_quasi_static = false;
+  bool accel_quasi_static = false;
 };
 
 struct EstimatorCounters {
@@ -83,6 +89,10 @@ struct EstimatorCounters {
   std::uint64_t mag_heading_restores = 0;  // disturbance onsets that restored ψ_g (eq. 4.4)
   std::uint64_t state_recoveries = 0;    // a non-finite state was replaced (never expected)
   std::uint64_t accel_clipped = 0;       // samples with an axis at the accelerometer's learned limit
+  std::uint64_t qsf_mag_periods = 0;     // quasi-static field periods (quasi_static_field.hpp)
+  std::uint64_t qsf_mag_ms = 0;          // time in them, milliseconds
+  std::uint64_t qsf_accel_periods = 0;   // the same for the specific force
+  std::uint64_t qsf_accel_ms = 0;
 };
 
 // Calls fn(name, value) for every counter, in a fixed order, with stable snake_case names:
@@ -105,6 +115,10 @@ void forEachCounter(const EstimatorCounters& c, Fn&& fn) {
   fn("mag_heading_restores", c.mag_heading_restores);
   fn("state_recoveries", c.state_recoveries);
   fn("accel_clipped", c.accel_clipped);
+  fn("qsf_mag_periods", c.qsf_mag_periods);
+  fn("qsf_mag_ms", c.qsf_mag_ms);
+  fn("qsf_accel_periods", c.qsf_accel_periods);
+  fn("qsf_accel_ms", c.qsf_accel_ms);
 }
 
 // A value: a copy carries on independently from the same state (its parts hold their own
@@ -126,6 +140,11 @@ class Estimator {
   const MagDisturbanceDetector& magDisturbance() const { return mag_disturbance_; }
   const VectorDelayEstimator& accelDelay() const { return accel_delay_; }
   const GyroBiasEstimator& gyroBias() const { return bias_; }
+  // Time since the tilt started afresh (the first sample, or after a gap).
+  double tiltSeconds() const { return tilt_seconds_; }
+  const QuasiStaticFieldDetector& magQuasiStatic() const { return qsf_mag_; }
+  const QuasiStaticFieldDetector& accelQuasiStatic() const { return qsf_accel_; }
+
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
   // strength and dip tests of the disturbance detection (Henriksson §4.2).
@@ -156,6 +175,9 @@ class Estimator {
   void publish(std::int64_t t_ns);
   // The heading uncertainty's step: the rate error the bias filter allows about the vertical.
   void predictHeadingUncertainty(double dt_s);
+  // The quasi-static field tests of this sample (a held field sample is not a new one).
+  void detectQuasiStaticFields(const ImuSample& s, const Quat& increment, const Vec3& accel_now, const Vec3& mag_now,
+                               bool mag_usable, double dt_s);
 
   EstimatorParams p_;
   SampleGate gate_;
@@ -185,6 +207,11 @@ class Estimator {
   double mag_seconds_ = 0.0;  // time since the first usable field sample
   VerticalRateError vertical_rate_error_;  // the observer's integral term
   double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)
+  GyroFrame qsf_frame_;  // the frame both detectors carry their samples into
+  QuasiStaticFieldDetector qsf_mag_;
+  QuasiStaticFieldDetector qsf_accel_;
+  Vec3 qsf_last_mag_uT_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // to tell a held sample
+  double qsf_mag_dt_s_ = 0.0;  // since the last new field sample
   bool initialised_ = false;
   bool heading_aligned_ = false;
   EstimatorOutput out_;

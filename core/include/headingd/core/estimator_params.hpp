@@ -505,6 +505,27 @@ struct EstimatorParams {
   // 1.25°). The prior at half the clamp instead (0.1 rad/s per axis) moved no class by more
   // than 0.02° but lifted the heading sigma of 6 classes above 97 % (20 left within, not 26).
   double bias_max_rad_s = 0.2;
+
+  // --- Quasi-static fields (quasi_static_field.hpp; Renaudin & Combettes 2014 §5) ---
+  // Detected and counted only: no update uses them yet (issue 29). A field is quasi-static
+  // while, over a window of qsf_*_window_s, its norm's RMS about ξ_ref (the mean norm of the
+  // period's first qsf_*_reference_s) stays below qsf_*_max_norm_rms (eq. 33), every norm
+  // within qsf_*_max_norm_deviation of ξ_ref (eq. 34), and the samples carried through the
+  // gyro into one frame spread by at most qsf_*_max_direction_rms (the direction, which the
+  // norm cannot see). Each threshold is a minimum: it grows with the white noise the window's
+  // successive samples show, up to 3 times the value set. A window of 0 turns that detection
+  // off. The values are provisional until an update uses the periods; what they find on the
+  // simulator and the shared recordings is in docs/quasi-static-fields.md.
+  double qsf_mag_window_s = 1.0;
+  double qsf_mag_reference_s = 0.2;
+  double qsf_mag_max_norm_rms_uT = 1.0;
+  double qsf_mag_max_norm_deviation_uT = 3.0;
+  double qsf_mag_max_direction_rms_uT = 1.5;
+  double qsf_accel_window_s = 1.0;
+  double qsf_accel_reference_s = 0.2;
+  double qsf_accel_max_norm_rms_m_s2 = 0.1;
+  double qsf_accel_max_norm_deviation_m_s2 = 0.3;
+  double qsf_accel_max_direction_rms_m_s2 = 0.15;
 };
 
 // How long the EKF takes to follow its gravity measurement, in steady state: 2 σ_a / (g σ_ω)
