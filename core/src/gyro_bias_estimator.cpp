@@ -193,6 +193,12 @@ void GyroBiasEstimator::updateFromWindow() {
   settle();
 }
 
+void GyroBiasEstimator::addPrior(const Vec3& bias_rad_s, const Mat3& covariance) {
+  const Vec3 innovation = bias_rad_s - state_.bias();
+  state_.correct<3>(Mat3::Identity(), state_.covariance() + covariance, innovation);
+  settle();
+}
+
 void GyroBiasEstimator::settle() {
   // A larger estimate means rest or motion was misjudged: keep it at the plausible edge.
   state_.clampTo(p_.bias_max_rad_s);

@@ -5,6 +5,8 @@
 //   headingd-study sim --scenario NAME --seeds 1-20 [--rate HZ ...] [--grade consumer] [--accel-lag-s S] [--set ...]
 //   ... --trace FILE  (one run: per-sample diagnostics as CSV)
 //   ... --qsf         (the quasi-static field periods and how still the field was in them)
+//   ... --smooth      (headingd's offline smoother scored in place of the causal filter; with
+//                      --anchors, beside VQF's offline and causal filters)
 //   ... --anchors DIR (VQF and Fusion beside headingd: the drivers built by ../shared/anchors/build.sh;
 //                      then also each filter's fitted heading over the first 25 s and after)
 // The h<2s% column: the share of scored samples whose heading error is within twice the
@@ -29,6 +31,7 @@
 #include "headingd/files/output_file.hpp"
 #include "headingd/core/mag_heading_observer.hpp"
 #include "headingd/core/params_toml.hpp"
+#include "headingd/core/two_filter_smoother.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "headingd/sim/simulation.hpp"
@@ -99,7 +102,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   std::vector<std::uint64_t> still_blocks, restores;
   std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas, dip_deviations, shown_rates, shown_rate_sigmas;
   std::vector<std::pair<double, double>> accel_delays;  // the regression's estimate and sigma
-  const const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
+  const auto est = study::runEstimator(r, params, [&](std::size_t, const core::Estimator& e) {
     outputs.push_back(e.output());
     accel_delays.emplace_back(e.accelDelay().estimateS(), e.accelDelay().sigmaS());
     rate_sigmas.push_back(e.headingUncertainty().rateSigmaRadS());
@@ -302,8 +305,11 @@ int main(int argc, char** argv) {
   std::string config, trace, anchors_dir;
   std::vector<std::string> sets;
   std::vector<double> rates;
-  bool quasi_static = false;
+  bool quasi_static = false, smooth = false;
   auto common = [&](CLI::App* c) {
+    c->add_flag("--smooth", smooth,
+                "score headingd's offline smoother (core/two_filter_smoother.hpp) in place of its causal filter; "
+                "with --anchors, VQF's offline and causal filters beside it");
     c->add_flag("--qsf", quasi_static,
                 "also print the quasi-static field and specific force periods the estimator found, and how still "
                 "each vector was in them through the reference attitude");
@@ -351,7 +357,7 @@ int main(int argc, char** argv) {
     const core::EstimatorParams params = loadParams(config, sets);
     std::vector<study::AnchorFilter> anchors;
     if (!anchors_dir.empty()) {
-      anchors = study::findAnchors(anchors_dir);
+      anchors = study::findAnchors(anchors_dir, smooth);
       if (anchors.empty()) throw std::runtime_error("no anchor_vqf or anchor_fusion in " + anchors_dir);
       std::printf("anchors: %zu comparator filters from %s, run on the same samples\n", anchors.size(),
                   anchors_dir.c_str());
@@ -398,7 +404,7 @@ int main(int argc, char** argv) {
       std::vector<bool> mag_qsf(r.size(), false), accel_qsf(r.size(), false);
       std::vector<core::Vec3> mag_used, accel_used;  // with --qsf: each vector turned by its lag
       sigmas.reserve(r.size());
-      const auto est = study::runEstimator(r, params, [&](std::size_t i, const core::Estimator& e) {
+      auto est = study::runEstimator(r, params, [&](std::size_t i, const core::Estimator& e) {
         sigmas.push_back(e.output().heading_sigma_rad);
         mag_lags.push_back(e.output().mag_lag_s);
         const core::EstimatorOutput& o = e.output();
@@ -410,6 +416,14 @@ int main(int argc, char** argv) {
           accel_used.push_back(core::turnedBySmallAngle(r.samples[i].accel_m_s2, -o.accel_lag_s * rate));
         }
       });
+      if (smooth) {
+        const std::vector<core::AttitudeEstimate> smoothed = core::smoothAttitudes(r.samples, params);
+        for (std::size_t i = 0; i < r.size(); ++i) {
+          constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+          est[i] = smoothed[i].valid ? smoothed[i].q_nb : core::Quat(kNan, kNan, kNan, kNan);
+          sigmas[i] = std::sqrt(smoothed[i].covariance_ned(2, 2));
+        }
+      }
       const double coverage =
           study::headingCoverage(r, *simulate ? est : study::alignedEstimates(r, est), sigmas, 2.0);
       rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg),

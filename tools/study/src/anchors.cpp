@@ -69,9 +69,12 @@ void runProgram(const std::string& binary, const std::string& in, const std::str
 
 }  // namespace
 
-std::vector<AnchorFilter> findAnchors(const std::string& bin_dir) {
+std::vector<AnchorFilter> findAnchors(const std::string& bin_dir, bool offline) {
   std::vector<AnchorFilter> found;
-  for (const auto& [name, file] : {std::pair{"VQF", "anchor_vqf"}, std::pair{"Fusion", "anchor_fusion"}}) {
+  using Filters = std::vector<std::pair<const char*, const char*>>;  // name, driver
+  const Filters filters = offline ? Filters{{"VQF offline", "anchor_vqf_offline"}, {"VQF", "anchor_vqf"}}
+                                  : Filters{{"VQF", "anchor_vqf"}, {"Fusion", "anchor_fusion"}};
+  for (const auto& [name, file] : filters) {
     const std::filesystem::path p = std::filesystem::path(bin_dir) / file;
     if (access(p.c_str(), X_OK) == 0) found.push_back({name, p.string()});
   }

@@ -145,6 +145,8 @@ class Estimator {
   const QuasiStaticFieldDetector& magQuasiStatic() const { return qsf_mag_; }
   const QuasiStaticFieldDetector& accelQuasiStatic() const { return qsf_accel_; }
 
+  // What is known of the gyro bias from elsewhere (GyroBiasEstimator::addPrior).
+  void addGyroBiasPrior(const Vec3& bias_rad_s, const Mat3& covariance) { bias_.addPrior(bias_rad_s, covariance); }
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
   // strength and dip tests of the disturbance detection (Henriksson §4.2).

@@ -74,6 +74,11 @@ class GyroBiasEstimator {
   // EKF, so the turns it causes are no noisier.)
   void addTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s, bool measures_bias);
 
+  // What is known of the bias from elsewhere (another run over the same sensor, e.g. the
+  // forward filter's final estimate for the offline smoother's backward one): a measurement
+  // y = bias with that covariance, H = I.
+  void addPrior(const Vec3& bias_rad_s, const Mat3& covariance);
+
   const Vec3& bias() const { return bias_; }
   bool atRest() const { return rest_.atRest(); }
   // Seconds of still blocks the estimate has seen (0 until the first), and how many.

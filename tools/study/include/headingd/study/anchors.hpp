@@ -17,9 +17,10 @@ struct AnchorFilter {
   std::string binary;  // path of the driver program
 };
 
-// The drivers found in bin_dir (anchor_vqf, anchor_fusion), in that order; empty when the
-// folder holds none of them.
-std::vector<AnchorFilter> findAnchors(const std::string& bin_dir);
+// The drivers found in bin_dir (anchor_vqf, anchor_fusion), in that order; offline: the acausal
+// anchor_vqf_offline and the causal anchor_vqf instead, to set beside a smoother. Empty when
+// the folder holds none of them.
+std::vector<AnchorFilter> findAnchors(const std::string& bin_dir, bool offline = false);
 
 // Runs one driver on the recording (written to a temporary CSV; a sample without a field
 // repeats the last one, as a slower magnetometer's reader would) and returns its estimate

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# headingd-replay --smooth on one BROAD trial, as a user runs it: one row per input row with
+# the documented header, the same bytes twice, the heading the causal filter's, and the
+# inclination smoothed well below the causal filter's (fast combined motion: 1.43 deg causal,
+# 0.81 smoothed when this was written); --nmea is refused as a bad argument.
+set -euo pipefail
+# BROAD_DIR and KIND as cmake/test_data.cmake chose them; TRIAL without .csv.gz.
+replay=$1 eval=$2 broad=$3 kind=$4 trial=$broad/$5.csv.gz
+source "$(dirname "$0")/../support/test_data.sh"
+announce_data_set "$broad" "$kind" .csv.gz trials
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$replay" --imu-csv "$trial" --out "$work/causal.csv" 2>/dev/null
+"$replay" --imu-csv "$trial" --out "$work/smooth.csv" --smooth 2>"$work/counters.json"
+header=$(head -n 1 "$work/smooth.csv")
+[ "$header" = "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg" ] || { echo "bad header: $header"; exit 1; }
+in_rows=$(( $(zcat -f "$trial" | wc -l) - 1 ))
+out_rows=$(( $(wc -l < "$work/smooth.csv") - 1 ))
+[ "$in_rows" -eq "$out_rows" ] || { echo "rows: in $in_rows, out $out_rows"; exit 1; }
+grep -q "\"rows\":$in_rows," "$work/counters.json" || { echo "counters: $(cat "$work/counters.json")"; exit 1; }
+
+"$replay" --imu-csv "$trial" --out "$work/smooth2.csv" --smooth 2>/dev/null
+cmp -s "$work/smooth.csv" "$work/smooth2.csv" || { echo "the smoother is not deterministic"; exit 1; }
+
+figure() { sed -n "s/.*\"$1\":\([0-9.]*\).*/\1/p" <<<"$2"; }
+causal=$("$eval" --estimates "$work/causal.csv" --reference "$trial")
+smooth=$("$eval" --estimates "$work/smooth.csv" --reference "$trial")
+echo "causal:   $causal"
+echo "smoothed: $smooth"
+awk -v c="$(figure heading_rmse_deg "$causal")" -v s="$(figure heading_rmse_deg "$smooth")" \
+  'BEGIN { exit !(s > c - 0.01 && s < c + 0.01) }' || { echo "the smoothed heading is not the causal one"; exit 1; }
+awk -v c="$(figure inclination_rmse_deg "$causal")" -v s="$(figure inclination_rmse_deg "$smooth")" \
+  'BEGIN { exit !(s > 0 && s < 0.75 * c) }' || { echo "inclination not smoothed below 0.75 x the causal filter's"; exit 1; }
+
+status=0
+"$replay" --imu-csv "$trial" --out "$work/x.csv" --smooth --nmea "$trial" 2>"$work/err" || status=$?
+[ "$status" -eq 2 ] && grep -q -- "--nmea" "$work/err" || { echo "--smooth --nmea: exit $status, $(cat "$work/err")"; exit 1; }
+echo "ok"
