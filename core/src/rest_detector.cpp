@@ -38,15 +38,6 @@ constexpr double kSamplePeriodWeight = 0.1;
 // block's 10 s (bias_time_constant_s) at 200 Hz (at higher rates its first part only).
 constexpr std::size_t kCoursePoints = 2048;
 
-// [u]×: [u]× v = u × v.
-Mat3 skew(const Vec3& u) {
-  Mat3 m;
-  m << 0.0, -u.z(), u.y(),  //
-      u.z(), 0.0, -u.x(),   //
-      -u.y(), u.x(), 0.0;
-  return m;
-}
-
 }  // namespace
 
 RestDetector::RestDetector(const EstimatorParams& p)
@@ -130,7 +121,7 @@ bool RestDetector::measuredTurn(double dt_s, const Block& block, const BlockPoin
   for (int i = 0; i < count; ++i) {
     const Vec3& u = seen[i].start;
     measured_information += (Mat3::Identity() - u * u.transpose()) / seen[i].variance;
-    projected += skew(u).transpose() * (seen[i].end - u) / seen[i].variance;
+    projected += crossMatrix(u).transpose() * (seen[i].end - u) / seen[i].variance;
   }
   // Each part, about the horizontal axes and about the vertical, lay still or turned:
   // θ ~ N(0, P₀) with P₀ = σ_p² times the projector on the parts that turned. Against the
@@ -180,7 +171,7 @@ bool RestDetector::measuredTurn(double dt_s, const Block& block, const BlockPoin
   // What one rotation cannot explain (a linear acceleration, a field that changed) must be
   // within 4σ of each vector's noise, plus 0.1 deg for the small-angle model.
   for (int i = 0; i < count; ++i) {
-    const Vec3 residual = seen[i].end - seen[i].start - skew(seen[i].start) * turned;
+    const Vec3 residual = seen[i].end - seen[i].start - crossMatrix(seen[i].start) * turned;
     if (residual.norm() > 4.0 * std::sqrt(seen[i].variance) + 0.0017) return false;
   }
   return true;

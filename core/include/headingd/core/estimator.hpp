@@ -5,8 +5,9 @@
 //   → the specific force and the field turned by each sensor's learned delay
 //     (vector_delay_estimator.hpp)
 //   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → quasi-static field and specific
-//   force (MAGYQ §5, quasi_static_field.hpp; counted, not used yet) → d_k and R level (eq. 3.1, 3.4,
-//   hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's turn, in motion)
+//   force (MAGYQ §5, quasi_static_field.hpp; counted, not used yet) → d_k and R level
+//   (eq. 3.1, 3.4, hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's
+//   turn, in motion)
 //   → magnetometer heading observer (eq. 4.2, with an integral term for the vertical rate
 //   error) with the gyro-only heading restored at a
 //   disturbance's onset (eq. 4.4, heading_corrections.hpp) → the person's up axis learned

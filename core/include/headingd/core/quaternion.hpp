@@ -64,6 +64,15 @@ double yawZyx(const Quat& q_nb);
 // term is below |φ|³/6: 3e-5 of |v| for 600 deg/s over half a 100 Hz sample).
 Vec3 turnedBySmallAngle(const Vec3& v, const Vec3& phi);
 
+// [u]×, the cross-product matrix: crossMatrix(u) v = u × v.
+inline Mat3 crossMatrix(const Vec3& u) {
+  Mat3 m;
+  m << 0.0, -u.z(), u.y(),  //
+      u.z(), 0.0, -u.x(),   //
+      -u.y(), u.x(), 0.0;
+  return m;
+}
+
 // Rotation by angle_rad about NED down (a heading change seen from above, clockwise positive).
 Quat headingRotation(double angle_rad);
 
