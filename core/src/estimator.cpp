@@ -83,7 +83,9 @@ Estimator::Estimator(const EstimatorParams& params)
       qsf_mag_({p_.qsf_mag_window_s, p_.qsf_mag_reference_s, p_.qsf_mag_max_norm_rms_uT,
                 p_.qsf_mag_max_norm_deviation_uT, p_.qsf_mag_max_direction_rms_uT}),
       qsf_accel_({p_.qsf_accel_window_s, p_.qsf_accel_reference_s, p_.qsf_accel_max_norm_rms_m_s2,
-                  p_.qsf_accel_max_norm_deviation_m_s2, p_.qsf_accel_max_direction_rms_m_s2}) {}
+                  p_.qsf_accel_max_norm_deviation_m_s2, p_.qsf_accel_max_direction_rms_m_s2}),
+      qsf_mag_update_({p_.qsf_mag_update_noise_uT, p_.mag_residual_hard_iron_uT, p_.field_update_max_nis}),
+      mau_({p_.mau_noise_uT, p_.mau_interval_s, p_.mau_verify_max_rad, p_.field_update_max_nis}) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
   out_.dt_s = 0.0;
@@ -119,6 +121,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       qsf_mag_.restart();
       qsf_accel_.restart();
       qsf_mag_dt_s_ = 0.0;
+      qsf_mag_update_.restart();
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
       heading_corrections_.restart(vertical_rate_error_.rateRadS());
       ekf_.setCovariance(kStartupCovariance);
@@ -193,7 +196,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   mag_delay_.update(gyro, mag_usable ? &s.mag_uT : nullptr, mag_clean, dt_s);
   const Vec3 mag_now = turnedToNow(mag_delay_, s.mag_uT, gyro, down_s, mag_clean, dt_s, &out_.mag_lag_s);
   const Vec3 gravity_measurement = accel_prefilter_.update(increment, accel_now, dt_s, turning);
-  detectQuasiStaticFields(s, increment, accel_now, mag_now, mag_usable, dt_s);
+  const bool new_field_sample = detectQuasiStaticFields(s, increment, accel_now, mag_now, mag_usable, dt_s);
 
   // Henriksson §3.1 also goes back to a gyro-only background attitude whenever the level
   // steps up. headingd does not: that attitude has run on the gyro alone for 5-10 s, and
@@ -234,6 +237,8 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   out_.mag_used = false;
   out_.mag_disturbed = false;
   out_.mag_gain = 0.0;
+  out_.mau_applied = false;
+  out_.qsf_mag_update_applied = false;
   mag_prefilter_.advance(increment);
   mag_disturbance_.advance(increment);
   mag_sample_dt_s_ += dt_s;
@@ -241,7 +246,9 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
     // The observer's time constants are in seconds: each field sample stands for the time since
     // the last one (a magnetometer slower than the IMU, in some epochs only), up to a gap.
     const double field_period_s = std::min(mag_sample_dt_s_, p_.max_sample_gap_s);
-    correctHeading(mag_prefilter_.add(mag_now, mag_sample_dt_s_), field_period_s, turn_rate_rad_s);
+    const Vec3 field_uT = mag_prefilter_.add(mag_now, mag_sample_dt_s_);
+    correctHeading(field_uT, field_period_s, turn_rate_rad_s);
+    applyFieldUpdates(field_uT, mag_now, field_period_s, new_field_sample);
     if (out_.mag_used || out_.mag_disturbed) vertical_rate_error_.fieldSample(out_.mag_disturbed, field_period_s);
     mag_sample_dt_s_ = 0.0;
   }
@@ -326,7 +333,22 @@ void Estimator::correctHeading(const Vec3& mag_uT, double field_period_s, double
   out_.mag_innovation_rad = m.innovation_rad;
 }
 
-void Estimator::detectQuasiStaticFields(const ImuSample& s, const Quat& increment, const Vec3& accel_now,
+void Estimator::applyFieldUpdates(const Vec3& filtered_uT, const Vec3& sample_uT, double field_period_s,
+                                  bool new_field_sample) {
+  // MAU on the low-passed field the observer used (its error is the calibration's, not the
+  // sample's noise); the QSF update on each new sample (MAGYQ's white noise per sample).
+  if (out_.mag_used) {
+    out_.mau_applied = mau_.update(ekf_, filtered_uT, field_period_s, heading_uncertainty_.sigmaRad());
+  }
+  if (new_field_sample && heading_aligned_) {
+    const bool standing = motion_.level() == MotionLevel::kStanding;
+    out_.qsf_mag_update_applied =
+        qsf_mag_update_.update(ekf_, sample_uT, out_.mag_quasi_static && standing, !out_.mag_used,
+                               qsf_field_interval_s_, heading_uncertainty_.rateSigmaRadS()) != 0.0;
+  }
+}
+
+bool Estimator::detectQuasiStaticFields(const ImuSample& s, const Quat& increment, const Vec3& accel_now,
                                         const Vec3& mag_now, bool mag_usable, double dt_s) {
   qsf_frame_.advance(increment);
   out_.accel_quasi_static = qsf_accel_.add(accel_now, qsf_frame_.frameFromSensor(), dt_s);
@@ -335,11 +357,13 @@ void Estimator::detectQuasiStaticFields(const ImuSample& s, const Quat& incremen
   qsf_mag_dt_s_ += dt_s;
   if (mag_usable && s.mag_uT != qsf_last_mag_uT_) {
     out_.mag_quasi_static = qsf_mag_.add(mag_now, qsf_frame_.frameFromSensor(), qsf_mag_dt_s_);
+    qsf_field_interval_s_ = qsf_mag_dt_s_;
     qsf_last_mag_uT_ = s.mag_uT;
     qsf_mag_dt_s_ = 0.0;
-  } else if (!mag_usable) {
-    out_.mag_quasi_static = false;
+    return true;
   }
+  if (!mag_usable) out_.mag_quasi_static = false;
+  return false;
 }
 
 void Estimator::predictHeadingUncertainty(double dt_s) {
@@ -420,6 +444,11 @@ EstimatorCounters Estimator::counters() const {
   c.qsf_mag_ms = static_cast<std::uint64_t>(1000.0 * qsf_mag_.totalSeconds());
   c.qsf_accel_periods = qsf_accel_.periods();
   c.qsf_accel_ms = static_cast<std::uint64_t>(1000.0 * qsf_accel_.totalSeconds());
+  c.qsf_mag_updates = qsf_mag_update_.counters().applied;
+  c.qsf_mag_updates_rejected = qsf_mag_update_.counters().rejected_by_gate;
+  c.mau_updates = mau_.counters().applied;
+  c.mau_updates_rejected = mau_.counters().rejected_by_gate;
+  c.mau_updates_unverified = mau_.counters().rejected_by_verification;
   return c;
 }
 

@@ -107,6 +107,11 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"qsf_accel_max_norm_rms_m_s2", &P::qsf_accel_max_norm_rms_m_s2, 0.0, 100.0, "m/s^2"},
       {"qsf_accel_max_norm_deviation_m_s2", &P::qsf_accel_max_norm_deviation_m_s2, 0.0, 100.0, "m/s^2"},
       {"qsf_accel_max_direction_rms_m_s2", &P::qsf_accel_max_direction_rms_m_s2, 0.0, 100.0, "m/s^2"},
+      {"qsf_mag_update_noise_uT", &P::qsf_mag_update_noise_uT, 0.0, 1000.0, "uT"},
+      {"mau_noise_uT", &P::mau_noise_uT, 0.0, 1000.0, "uT"},
+      {"mau_interval_s", &P::mau_interval_s, 0.0, 3600.0, "s"},
+      {"mau_verify_max_rad", &P::mau_verify_max_rad, 0.0, 3.15, "rad"},
+      {"field_update_max_nis", &P::field_update_max_nis, 0.0, 1e6, "1"},
   };
   return specs;
 }

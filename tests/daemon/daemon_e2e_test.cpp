@@ -140,7 +140,9 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
                                       "imu_rejected", "bias_still_blocks", "mag_no_heading", "mag_disturbed",
                                       "mag_heading_restores", "mag_calibration_set_aside",
                                       "mag_calibration_taken_back", "state_recoveries", "accel_clipped", "qsf_mag_periods",
-                                      "qsf_mag_ms", "qsf_accel_periods", "qsf_accel_ms", "gps_epochs",
+                                      "qsf_mag_ms", "qsf_accel_periods", "qsf_accel_ms", "qsf_mag_updates",
+                                      "qsf_mag_updates_rejected", "mau_updates", "mau_updates_rejected",
+                                      "mau_updates_unverified", "gps_epochs",
                                       "gps_epochs_used_for_declination", "gps_epochs_forced_out",
                                       "gps_values_ignored", "log_write_errors"}));
   EXPECT_EQ(last.num_counters, static_cast<std::int32_t>(last.counters.size()));

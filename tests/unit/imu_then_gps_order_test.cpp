@@ -83,7 +83,7 @@ TEST(ImuThenGpsOrder, EpochsHandedOutAreNotHandedOutAgain) {
 }
 
 // A counter added to EstimatorCounters goes into forEachCounter too (and into this test).
-static_assert(sizeof(EstimatorCounters) == 19 * sizeof(std::uint64_t));
+static_assert(sizeof(EstimatorCounters) == 24 * sizeof(std::uint64_t));
 
 TEST(EstimatorCounters, ForEachCounterListsEveryCounterOnce) {
   EstimatorCounters c;
@@ -94,17 +94,18 @@ TEST(EstimatorCounters, ForEachCounterListsEveryCounterOnce) {
                            &c.samples.out_of_range, &c.samples.out_of_range_mag, &c.bias_still_blocks,
                            &c.mag_no_heading, &c.mag_disturbed, &c.mag_heading_restores, &c.state_recoveries,
                            &c.accel_clipped, &c.qsf_mag_periods, &c.qsf_mag_ms, &c.qsf_accel_periods,
-                           &c.qsf_accel_ms}) {
+                           &c.qsf_accel_ms, &c.qsf_mag_updates, &c.qsf_mag_updates_rejected, &c.mau_updates,
+                           &c.mau_updates_rejected, &c.mau_updates_unverified}) {
     *f = v++;
   }
   std::vector<std::pair<std::string, std::uint64_t>> list;
   forEachCounter(c, [&](const char* name, std::uint64_t value) { list.emplace_back(name, value); });
-  ASSERT_EQ(list.size(), 19u);
+  ASSERT_EQ(list.size(), 24u);
   for (std::size_t i = 0; i < list.size(); ++i) EXPECT_EQ(list[i].second, i + 1) << list[i].first;
   EXPECT_EQ(list.front().first, "accepted");
   EXPECT_EQ(list[8].first, "out_of_range_mag");
   EXPECT_EQ(list[14].first, "accel_clipped");
-  EXPECT_EQ(list.back().first, "qsf_accel_ms");
+  EXPECT_EQ(list.back().first, "mau_updates_unverified");
 }
 
 }  // namespace

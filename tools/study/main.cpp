@@ -97,7 +97,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
          "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms,"
          "tilt_sigma_deg,mag_norm_jump,mag_dip_jump,dip_deg,true_dip_deg,heading_prior_sigma_deg,mag_dip_deviation_deg,"
          "field_heading_error_deg,tilt_heading_error_deg,vertical_error_deg,shown_rate_error_mrad_s,"
-         "shown_rate_error_sigma_mrad_s,true_rate_error_mrad_s\n";
+         "shown_rate_error_sigma_mrad_s,true_rate_error_mrad_s,mag_quasi_static,qsf_mag_update,mau\n";
   std::vector<core::EstimatorOutput> outputs;
   std::vector<std::uint64_t> still_blocks, restores;
   std::vector<double> rate_sigmas, tilt_sigmas, prior_sigmas, dip_deviations, shown_rates, shown_rate_sigmas;
@@ -156,7 +156,8 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
             : nan;
     std::snprintf(line, sizeof line,
                   "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
+                  "%d,%d,%d\n",
                   1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
                   errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
                   o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
@@ -170,7 +171,8 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
                   tilt_sigmas[i] * kDeg, o.mag_disturbance.norm_jump ? 1 : 0, o.mag_disturbance.dip_jump ? 1 : 0,
                   dipDeg(through_estimate), dipDeg(through_truth),
                   prior_sigmas[i] * kDeg, dip_deviations[i] * kDeg, field_error_deg, tilt_error_deg,
-                  vertical_error_rad * kDeg, 1e3 * shown_rates[i], 1e3 * shown_rate_sigmas[i], 1e3 * true_rate_error);
+                  vertical_error_rad * kDeg, 1e3 * shown_rates[i], 1e3 * shown_rate_sigmas[i], 1e3 * true_rate_error,
+                  o.mag_quasi_static ? 1 : 0, o.qsf_mag_update_applied ? 1 : 0, o.mau_applied ? 1 : 0);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());
@@ -188,6 +190,8 @@ struct Row {
   study::ReferenceDelays delays;         // with --reference-delays
   double learned_mag_lag_s = 0.0;        // the estimator's, median over the second half
   study::QuasiStaticScore mag_qsf, accel_qsf;  // with --qsf
+  core::EstimatorCounters counters;            // at the end of the run
+  double minutes = 0.0;                        // of samples
 };
 
 double medianOfSecondHalf(std::vector<double> v) {
@@ -211,6 +215,20 @@ void printReferenceDelays(const std::vector<Row>& rows) {
     std::printf("%-46s %7.1f | %6.0f %5.2f (%5.2f) | %6.0f | %8.1f\n", row.name.c_str(), row.rate_hz,
                 1e3 * row.delays.mag_s, row.delays.mag_spread_uT, row.delays.mag_spread_at_zero_uT,
                 1e3 * row.delays.gyro_s, 1e3 * row.learned_mag_lag_s);
+  }
+}
+
+// How often the updates from the field's direction fired (issue 29), where one is on.
+void printFieldUpdates(const std::vector<Row>& rows) {
+  std::printf("\nfield updates per minute (quasi_static_field_update.hpp, magnetic_attitude_update.hpp): QSF applied "
+              "/ rejected by the gate, MAU applied / rejected by the gate / not verified by the magnetic frame\n");
+  std::printf("%-46s %7s | %8s %8s | %8s %8s %8s\n", "run", "Hz", "qsf", "qsf.rej", "mau", "mau.rej", "mau.unv");
+  for (const Row& row : rows) {
+    const auto& c = row.counters;
+    const auto perMinute = [&](std::uint64_t n) { return static_cast<double>(n) / row.minutes; };
+    std::printf("%-46s %7.1f | %8.1f %8.1f | %8.1f %8.1f %8.1f\n", row.name.c_str(), row.rate_hz,
+                perMinute(c.qsf_mag_updates), perMinute(c.qsf_mag_updates_rejected), perMinute(c.mau_updates),
+                perMinute(c.mau_updates_rejected), perMinute(c.mau_updates_unverified));
   }
 }
 
@@ -326,6 +344,11 @@ int main(int argc, char** argv) {
   broad->add_option("--dir", dir, "folder of NN_name.csv.gz trials")->capture_default_str();
   broad->add_option("--only", only, "trials whose name contains this");
   bool centred = false, reference_delays = false;
+  std::vector<double> reference_field;
+  broad->add_option("--reference-field", reference_field,
+                    "the field where it was recorded, strength (uT) and dip (deg), given to the estimator as the "
+                    "daemon gives the WMM's with a GPS fix or a configured place (e.g. BROAD's lab: 42.5 69.5)")
+      ->expected(2);
   broad->add_flag("--reference-delays", reference_delays,
                   "also measure how late the magnetometer and the gyro are against the reference attitude, and "
                   "print them beside the magnetometer delay headingd learned");
@@ -349,6 +372,10 @@ int main(int argc, char** argv) {
   simulate->add_option("--initial-error-deg", initial_error_deg,
                        "turn the first sample's accelerometer and magnetometer by this angle (about an axis drawn "
                        "from the seed): the estimator starts that far off");
+  bool wmm_reference = false;
+  simulate->add_flag("--wmm-reference", wmm_reference,
+                     "give the estimator the WMM's field at the simulated place, as the daemon does once GPS has a "
+                     "fix (enables the reference strength and dip tests, and MAU)");
   common(simulate);
   app.footer(std::string("Exit codes: 0 done, 1 an input cannot be read or a trace cannot be written, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
@@ -394,17 +421,24 @@ int main(int argc, char** argv) {
         c.accel_lag_s = accel_lag_s;
         r = study::fromSimulation(sim::simulate(c, *wmm), scenario + " seed " + std::to_string(c.seed));
         if (initial_error_deg != 0.0) study::startOffBy(r, initial_error_deg / kDeg, c.seed);
+        if (!wmm_reference) r.reference_field_uT = 0.0;
       } else {
         r = study::readBroadTrial(paths[source]);
         if (rate > 0.0) {
           r = study::resample(r, rate, centred ? study::VectorWindow::kCentred : study::VectorWindow::kTrailing);
+        }
+        if (reference_field.size() == 2) {
+          r.reference_field_uT = reference_field[0];
+          r.reference_inclination_rad = reference_field[1] / kDeg;
         }
       }
       std::vector<double> sigmas, mag_lags;
       std::vector<bool> mag_qsf(r.size(), false), accel_qsf(r.size(), false);
       std::vector<core::Vec3> mag_used, accel_used;  // with --qsf: each vector turned by its lag
       sigmas.reserve(r.size());
+      core::EstimatorCounters counters;
       auto est = study::runEstimator(r, params, [&](std::size_t i, const core::Estimator& e) {
+        if (i + 1 == r.size()) counters = e.counters();
         sigmas.push_back(e.output().heading_sigma_rad);
         mag_lags.push_back(e.output().mag_lag_s);
         const core::EstimatorOutput& o = e.output();
@@ -427,7 +461,9 @@ int main(int argc, char** argv) {
       const double coverage =
           study::headingCoverage(r, *simulate ? est : study::alignedEstimates(r, est), sigmas, 2.0);
       rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg),
-                   coverage, {}, {}, 0.0, {}, {}};
+                   coverage, {}, {}, 0.0, {}, {}, counters,
+                   r.size() > 1 ? 1e-9 * static_cast<double>(r.samples.back().t_ns - r.samples.front().t_ns) / 60.0
+                                : 0.0};
       for (const auto& a : anchors) rows[job].anchors.push_back(study::score(r, study::runAnchor(a, r)));
       if (quasi_static) {
         rows[job].mag_qsf = study::scoreQuasiStatic(r, mag_qsf, mag_used);
@@ -475,6 +511,7 @@ int main(int argc, char** argv) {
     if (!anchors.empty()) printSideBySide(rows, rates, anchors);
     if (reference_delays) printReferenceDelays(rows);
     if (quasi_static) printQuasiStatic(rows);
+    if (params.qsf_mag_update_noise_uT > 0.0 || params.mau_noise_uT > 0.0) printFieldUpdates(rows);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-study: %s\n", e.what());
     return 1;

@@ -46,6 +46,8 @@ Recording fromSimulation(const sim::SimResult& result, std::string name) {
     r.truth_nb.push_back((true_to_magnetic * row.q_ns).normalized());
     r.moving.push_back(row.moving);
   }
+  r.reference_field_uT = 1e-3 * result.wmm.f_nT;
+  r.reference_inclination_rad = result.wmm.inclination_deg * std::numbers::pi / 180.0;
   return r;
 }
 

@@ -36,6 +36,7 @@ double seconds(const Recording& r, std::size_t i) {
 std::vector<Quat> runEstimator(const Recording& r, const core::EstimatorParams& params,
                                const EstimatorObserver& observe) {
   core::Estimator estimator(params);
+  if (r.reference_field_uT > 0.0) estimator.setReferenceField(r.reference_field_uT, r.reference_inclination_rad);
   std::vector<Quat> out;
   out.reserve(r.size());
   for (std::size_t i = 0; i < r.size(); ++i) {

@@ -1,9 +1,26 @@
 #pragma once
 // The quaternion EKF of Henriksson (2013) ch. 3, Algorithm 2: the state is q_nb as a
 // 4-vector (w, x, y, z); the gyroscope predicts, the accelerometer's view of gravity updates.
+#include "headingd/core/measurement_model.hpp"
 #include "headingd/core/quaternion.hpp"
 
 namespace headingd::core {
+
+// Which of the attitude's axes a generic update (AttitudeEkf::update) may correct. The others'
+// uncertainty goes into the innovation's covariance but they are not moved (a "consider"
+// update): the heading is the magnetometer observer's (Henriksson eq. 4.2), so an update that
+// sees it too corrects the tilt only unless told otherwise.
+struct AttitudeAxes {
+  bool tilt = true;
+  bool heading = false;
+};
+
+struct AttitudeUpdateResult {
+  bool applied = false;  // false: rejected by the innovation gate, or the EKF is still starting
+  double innovation_nis = 0.0;  // rᵀ S⁻¹ r: χ² with the measurement's dimension when all is well
+  Vec3 turn_rad = Vec3::Zero();  // the correction about NED north, east, down
+  double heading_variance_rad2 = 0.0;  // the heading's variance after it (rad²)
+};
 
 class AttitudeEkf {
  public:
@@ -32,6 +49,17 @@ class AttitudeEkf {
   // clipped accelerometer's low-pass is short along its clipped axes: estimator.cpp.)
   Eigen::Vector2d updateGravity(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2,
                                 const Vec3& uncertain_direction, double extra_variance);
+
+  // Any measurement model's update (measurement_model.hpp: a residual, its Jacobian in the
+  // error state, its noise): the EKF does not know which models exist. Eqs. 2.9 in the error
+  // state of the attitude, δθ about NED with q = exp(δθ) ⊗ q̂, whose covariance is the tilt
+  // block and heading_sigma_rad² about down (the heading's sigma is kept outside the EKF:
+  // heading_uncertainty.hpp). Only the attitude columns of the Jacobian are used (the biases are
+  // the bias filter's). Rejected, and nothing changed, when the normalised innovation squared
+  // exceeds max_nis. The heading's variance after the update is returned, not kept.
+  template <int N>
+  AttitudeUpdateResult update(const Linearised<N>& measurement, double heading_sigma_rad, AttitudeAxes axes,
+                              double max_nis);
 
   // Replaces the attitude (back-tracking of §3.1, heading corrections of ch. 4). The
   // covariance is kept: the replacement is a better estimate of the same state.
@@ -76,5 +104,38 @@ class AttitudeEkf {
   Eigen::Matrix2d tilt_ = Eigen::Matrix2d::Zero();  // about NED north and east
   double heading_variance_ = 0.0;                     // about NED down
 };
+
+template <int N>
+AttitudeUpdateResult AttitudeEkf::update(const Linearised<N>& measurement, double heading_sigma_rad, AttitudeAxes axes,
+                                         double max_nis) {
+  using MatN = Eigen::Matrix<double, N, N>;
+  AttitudeUpdateResult result;
+  if (general_) return result;  // P not yet about the NED axes: only gravity updates until then
+  const Eigen::Matrix<double, N, 3> H = measurement.jacobian.template leftCols<3>();
+  Mat3 P = Mat3::Zero();
+  P.topLeftCorner<2, 2>() = 4.0 * tilt_;  // q + G t is a turn by 2 t (updateGravityTilt)
+  P(2, 2) = heading_sigma_rad * heading_sigma_rad;
+  const Eigen::Matrix<double, N, 3> HP = H * P;
+  const MatN S = HP * H.transpose() + measurement.noise_covariance;
+  const MatN S_inverse = S.inverse();
+  result.innovation_nis = measurement.residual.dot(S_inverse * measurement.residual);
+  if (!(result.innovation_nis <= max_nis)) return result;
+  // P is block-diagonal (tilt, heading), so the gain of the corrected block is P's rows of that
+  // block times Hᵀ S⁻¹; the considered block gets none.
+  Eigen::Matrix<double, 3, N> K = HP.transpose() * S_inverse;
+  if (!axes.tilt) K.template topRows<2>().setZero();
+  if (!axes.heading) K.row(2).setZero();
+  result.turn_rad = K * measurement.residual;
+  const Mat3 P_after = P - K * HP;
+  q_ = toWxyz(gyroIncrement(result.turn_rad, 1.0) * fromWxyz(q_));
+  normalise();
+  if (axes.tilt) {
+    const double xy = 0.5 * (P_after(0, 1) + P_after(1, 0));
+    tilt_ << 0.25 * P_after(0, 0), 0.25 * xy, 0.25 * xy, 0.25 * P_after(1, 1);
+  }
+  result.heading_variance_rad2 = P_after(2, 2);
+  result.applied = true;
+  return result;
+}
 
 }  // namespace headingd::core

@@ -5,12 +5,14 @@
 //   → the specific force and the field turned by each sensor's learned delay
 //     (vector_delay_estimator.hpp)
 //   → accelerometer pre-filter (gyro_frame_low_pass.hpp) → quasi-static field and specific
-//   force (MAGYQ §5, quasi_static_field.hpp; counted, not used yet) → d_k and R level
+//   force (MAGYQ §5, quasi_static_field.hpp) → d_k and R level
 //   (eq. 3.1, 3.4, hysteresis) → EKF gravity update (eq. 3.5-3.8) → gyro bias (the update's
 //   turn, in motion)
 //   → magnetometer heading observer (eq. 4.2, with an integral term for the vertical rate
 //   error) with the gyro-only heading restored at a
-//   disturbance's onset (eq. 4.4, heading_corrections.hpp) → the person's up axis learned
+//   disturbance's onset (eq. 4.4, heading_corrections.hpp) → MAU against the WMM while the field
+//   is clean, the QSF update while it is set aside but quasi-static (both off by default:
+//   estimator_params.hpp) → the person's up axis learned
 //   while walking (body_up_axis.hpp) → heading definition (§3.3) for that axis.
 #include <cstdint>
 #include <limits>
@@ -27,7 +29,9 @@
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/core/heading_uncertainty.hpp"
 #include "headingd/core/net_turn.hpp"
+#include "headingd/core/magnetic_attitude_update.hpp"
 #include "headingd/core/quasi_static_field.hpp"
+#include "headingd/core/quasi_static_field_update.hpp"
 #include "headingd/core/imu_sample.hpp"
 #include "headingd/core/vector_delay_estimator.hpp"
 #include "headingd/core/mag_disturbance.hpp"
@@ -80,6 +84,10 @@ struct EstimatorOutput {
   // The field / the specific force constant in the navigation frame (quasi_static_field.hpp).
   bool mag_quasi_static = false;
   bool accel_quasi_static = false;
+  // This sample's field corrected the attitude: MAU against the WMM (the tilt), the QSF update
+  // (the heading, while the observer sets the field aside).
+  bool mau_applied = false;
+  bool qsf_mag_update_applied = false;
 };
 
 struct EstimatorCounters {
@@ -94,6 +102,12 @@ struct EstimatorCounters {
   std::uint64_t qsf_mag_ms = 0;          // time in them, milliseconds
   std::uint64_t qsf_accel_periods = 0;   // the same for the specific force
   std::uint64_t qsf_accel_ms = 0;
+  // Field updates applied and rejected (quasi_static_field_update.hpp, magnetic_attitude_update.hpp).
+  std::uint64_t qsf_mag_updates = 0;
+  std::uint64_t qsf_mag_updates_rejected = 0;  // by the innovation gate
+  std::uint64_t mau_updates = 0;
+  std::uint64_t mau_updates_rejected = 0;    // by the innovation gate
+  std::uint64_t mau_updates_unverified = 0;  // by the magnetic frame's check
 };
 
 // Calls fn(name, value) for every counter, in a fixed order, with stable snake_case names:
@@ -120,6 +134,11 @@ void forEachCounter(const EstimatorCounters& c, Fn&& fn) {
   fn("qsf_mag_ms", c.qsf_mag_ms);
   fn("qsf_accel_periods", c.qsf_accel_periods);
   fn("qsf_accel_ms", c.qsf_accel_ms);
+  fn("qsf_mag_updates", c.qsf_mag_updates);
+  fn("qsf_mag_updates_rejected", c.qsf_mag_updates_rejected);
+  fn("mau_updates", c.mau_updates);
+  fn("mau_updates_rejected", c.mau_updates_rejected);
+  fn("mau_updates_unverified", c.mau_updates_unverified);
 }
 
 // A value: a copy carries on independently from the same state (its parts hold their own
@@ -153,6 +172,7 @@ class Estimator {
   // strength and dip tests of the disturbance detection (Henriksson §4.2).
   void setReferenceField(double field_norm_uT, double inclination_rad) {
     mag_disturbance_.setReference(field_norm_uT, inclination_rad);
+    mau_.setReference(field_norm_uT, inclination_rad);
     vertical_rate_error_.referenceUpdated();
   }
 
@@ -163,6 +183,9 @@ class Estimator {
   // mag_rate_error_max_turn_rad_s).
   void correctHeading(const Vec3& mag_uT, double field_period_s, double turn_rate_rad_s);
   void restoreGyroHeading();
+  // MAU and the QSF update (magnetic_attitude_update.hpp, quasi_static_field_update.hpp) after
+  // the observer has seen this field sample: filtered_uT what it saw, sample_uT the sample.
+  void applyFieldUpdates(const Vec3& filtered_uT, const Vec3& sample_uT, double field_period_s, bool new_field_sample);
   // Whether the background gyro-only heading of eq. 4.4 is expected to be better than a clean
   // field's: a restore is worth it only then.
   bool gyroHeadingBeatsAField() const;
@@ -178,8 +201,9 @@ class Estimator {
   void publish(std::int64_t t_ns);
   // The heading uncertainty's step: the rate error the bias filter allows about the vertical.
   void predictHeadingUncertainty(double dt_s);
-  // The quasi-static field tests of this sample (a held field sample is not a new one).
-  void detectQuasiStaticFields(const ImuSample& s, const Quat& increment, const Vec3& accel_now, const Vec3& mag_now,
+  // The quasi-static field tests of this sample (a held field sample is not a new one). Returns
+  // whether the field's sample was a new one.
+  bool detectQuasiStaticFields(const ImuSample& s, const Quat& increment, const Vec3& accel_now, const Vec3& mag_now,
                                bool mag_usable, double dt_s);
 
   EstimatorParams p_;
@@ -215,6 +239,9 @@ class Estimator {
   QuasiStaticFieldDetector qsf_accel_;
   Vec3 qsf_last_mag_uT_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // to tell a held sample
   double qsf_mag_dt_s_ = 0.0;  // since the last new field sample
+  double qsf_field_interval_s_ = 0.0;  // between the last two new field samples
+  QuasiStaticFieldUpdate qsf_mag_update_;
+  MagneticAttitudeUpdate mau_;
   bool initialised_ = false;
   bool heading_aligned_ = false;
   EstimatorOutput out_;

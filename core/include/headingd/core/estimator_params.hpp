@@ -507,15 +507,15 @@ struct EstimatorParams {
   double bias_max_rad_s = 0.2;
 
   // --- Quasi-static fields (quasi_static_field.hpp; Renaudin & Combettes 2014 §5) ---
-  // Detected and counted only: no update uses them yet (issue 29). A field is quasi-static
-  // while, over a window of qsf_*_window_s, its norm's RMS about ξ_ref (the mean norm of the
+  // Detected and counted; the magnetic periods feed the QSF update below when it is on. A field
+  // is quasi-static while, over a window of qsf_*_window_s, its norm's RMS about ξ_ref (the mean norm of the
   // period's first qsf_*_reference_s) stays below qsf_*_max_norm_rms (eq. 33), every norm
   // within qsf_*_max_norm_deviation of ξ_ref (eq. 34), and the samples carried through the
   // gyro into one frame spread by at most qsf_*_max_direction_rms (the direction, which the
   // norm cannot see). Each threshold is a minimum: it grows with the white noise the window's
   // successive samples show, up to 3 times the value set. A window of 0 turns that detection
-  // off. The values are provisional until an update uses the periods; what they find on the
-  // simulator and the shared recordings is in docs/quasi-static-fields.md.
+  // off. What they find on the simulator and the shared recordings is in
+  // docs/quasi-static-fields.md.
   double qsf_mag_window_s = 1.0;
   double qsf_mag_reference_s = 0.2;
   double qsf_mag_max_norm_rms_uT = 1.0;
@@ -526,6 +526,35 @@ struct EstimatorParams {
   double qsf_accel_max_norm_rms_m_s2 = 0.1;
   double qsf_accel_max_norm_deviation_m_s2 = 0.3;
   double qsf_accel_max_direction_rms_m_s2 = 0.15;
+
+  // --- Updates from the field's direction (issue 29; AttitudeEkf::update; docs/field-updates.md) ---
+  // The QSF update (MAGYQ eqs. 35-38, quasi_static_field_update.hpp): while the field is
+  // quasi-static, the person stands and the observer sets the field aside, each new sample holds
+  // the heading to the field's direction at the period's start, at this white noise per axis
+  // (µT), no further than the gyro can have drifted since. 0: off. Off by default: with 1 µT it
+  // gains on the simulated urban walk (7.43 → 7.35° over its grades at 100 Hz) and BROAD's
+  // undisturbed trials (1.18 → 1.15°) but loses on BROAD's disturbed ones (1.34 → 1.43°), on
+  // every shared phone group (nexus5_magnets 4.41 → 4.59°, iphone_magnets 3.40 → 3.56°) and in
+  // 18 of the 84 simulator classes (worst: slow rotation, consumer, 100 Hz, +0.31°); 2 and 4 µT
+  // lose on the phone groups too.
+  double qsf_mag_update_noise_uT = 0.0;
+  // MAU (Khedr et al., magnetic_attitude_update.hpp): while the field is clean, once per
+  // mau_interval_s the low-passed field against the WMM's (a position is needed) corrects the
+  // tilt, at mau_noise_uT per axis (the calibration's residual, as mag_residual_hard_iron_uT);
+  // accepted when the measured and the predicted field directions then agree within
+  // mau_verify_max_rad (6°: a clean field's direction through a good attitude is within 2-3°, the
+  // heading's error included). 0 noise: off. Off by default: with 3 µT it gains in 49 of the 84
+  // simulator classes (the phone running 2.96 → 2.63° at 50 Hz, its inclination 1.59 → 1.35°)
+  // and loses in 26 (worst: running in circles, consumer, 50 Hz, +0.28°: the tilt follows the
+  // field's own error, and the heading the tilt); at 6 µT 38 gain (at most 0.11°) and 14 lose (at
+  // most 0.03°). On BROAD with its lab's field as the reference it changes nothing (1.18 / 1.40°
+  // at 3 and 6 µT), and the shared phone recordings have no position.
+  double mau_noise_uT = 0.0;
+  double mau_interval_s = 1.0;
+  double mau_verify_max_rad = 0.1;
+  // Both updates' innovation gate: rᵀ S⁻¹ r at most this (χ² with 3 degrees of freedom:
+  // 16.3 passes 99.9 % of innovations that are as the model says; not tuned).
+  double field_update_max_nis = 16.27;
 };
 
 // How long the EKF takes to follow its gravity measurement, in steady state: 2 σ_a / (g σ_ω)

@@ -18,6 +18,10 @@ struct Recording {
   std::vector<core::ImuSample> samples;
   std::vector<core::Quat> truth_nb;  // one per sample; NaN coefficients where unknown
   std::vector<bool> moving;          // the samples that are scored (BROAD's `moving`)
+  // The World Magnetic Model's field where it was recorded (a simulation's place), given to the
+  // estimator as the daemon gives it with a GPS fix (Estimator::setReferenceField); 0: none.
+  double reference_field_uT = 0.0;
+  double reference_inclination_rad = 0.0;
 
   std::size_t size() const { return samples.size(); }
 };
