@@ -532,11 +532,11 @@ struct EstimatorParams {
   // quasi-static, the person stands and the observer sets the field aside, each new sample holds
   // the heading to the field's direction at the period's start, at this white noise per axis
   // (µT), no further than the gyro can have drifted since. 0: off. Off by default: with 1 µT it
-  // gains on the simulated urban walk (7.43 → 7.35° over its grades at 100 Hz) and BROAD's
-  // undisturbed trials (1.18 → 1.15°) but loses on BROAD's disturbed ones (1.34 → 1.43°), on
-  // every shared phone group (nexus5_magnets 4.41 → 4.59°, iphone_magnets 3.40 → 3.56°) and in
-  // 18 of the 84 simulator classes (worst: slow rotation, consumer, 100 Hz, +0.31°); 2 and 4 µT
-  // lose on the phone groups too.
+  // gains on the simulated urban walk (7.43 → 7.32° over its grades at 100 Hz) and BROAD's
+  // undisturbed trials (1.18 → 1.15°), never fires on the shared phone groups (their walkers never
+  // stand), and loses on BROAD's disturbed trials (1.34 → 1.42°; the vibrating phone, 26, 1.26 →
+  // 1.58°) and in 12 of the 84 simulator classes (worst: slow rotation, consumer, 100 Hz, +0.31°;
+  // with MAU and the WMM's field, the urban walk's consumer grade at 50 Hz +1.85°).
   double qsf_mag_update_noise_uT = 0.0;
   // MAU (Khedr et al., magnetic_attitude_update.hpp): while the field is clean, once per
   // mau_interval_s the low-passed field against the WMM's (a position is needed) corrects the
