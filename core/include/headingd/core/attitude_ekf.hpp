@@ -1,6 +1,8 @@
 #pragma once
 // The quaternion EKF of Henriksson (2013) ch. 3, Algorithm 2: the state is q_nb as a
 // 4-vector (w, x, y, z); the gyroscope predicts, the accelerometer's view of gravity updates.
+#include <cstdint>
+
 #include "headingd/core/measurement_model.hpp"
 #include "headingd/core/quaternion.hpp"
 
@@ -20,6 +22,13 @@ struct AttitudeUpdateResult {
   double innovation_nis = 0.0;  // rᵀ S⁻¹ r: χ² with the measurement's dimension when all is well
   Vec3 turn_rad = Vec3::Zero();  // the correction about NED north, east, down
   double heading_variance_rad2 = 0.0;  // the heading's variance after it (rad²)
+};
+
+// What an update built on AttitudeEkf::update counts of its outcomes (STATUS counters).
+struct FieldUpdateCounters {
+  std::uint64_t applied = 0;
+  std::uint64_t rejected_by_gate = 0;          // the innovation gate
+  std::uint64_t rejected_by_verification = 0;  // MAU's magnetic-frame check
 };
 
 class AttitudeEkf {

@@ -20,8 +20,6 @@
 // The field's error is mostly a calibration's residual, which changes slowly with the sensor's
 // attitude: updates every sample at that noise would count one error many times, so the update
 // comes at most once per interval_s.
-#include <cstdint>
-
 #include "headingd/core/attitude_ekf.hpp"
 
 namespace headingd::core {
@@ -31,12 +29,6 @@ struct MagneticAttitudeUpdateParams {
   double interval_s;      // at most one update per this time
   double verify_max_rad;  // the magnetic-frame verification's threshold
   double max_nis;         // the innovation gate (χ², 3 degrees of freedom)
-};
-
-struct FieldUpdateCounters {
-  std::uint64_t applied = 0;
-  std::uint64_t rejected_by_gate = 0;          // the innovation gate
-  std::uint64_t rejected_by_verification = 0;  // MAU's magnetic-frame check
 };
 
 class MagneticAttitudeUpdate {

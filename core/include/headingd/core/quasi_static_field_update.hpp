@@ -38,7 +38,6 @@
 // as the strength test's, mag_disturbance.hpp). Without it the update takes that residual into the
 // heading: on BROAD's slow rotations (trial 03) 1.20° became 3.99° with 1 µT of white noise alone.
 #include "headingd/core/attitude_ekf.hpp"
-#include "headingd/core/magnetic_attitude_update.hpp"
 
 namespace headingd::core {
 
