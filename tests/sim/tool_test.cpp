@@ -63,7 +63,8 @@ TEST_F(SimTool, HelpStatesTheConventionsAndListsTheScenarios) {
   const std::string help = out();
   for (const char* text : {"TRUE attitude q_nb of the", "SENSOR, mapping sensor axes to NED", "12:00:00",
                            "thesis-declination (244 s)", "urban-walk (600 s)", "static-disturbed (120 s)",
-                           "crawl (116 s)", "run (180 s)", "phone-texting (", "phone-calling (", "phone-swinging (",
+                           "crawl (116 s)", "run (180 s)", "indoor-static (310 s)", "moving-disturbances (210 s)",
+                           "vehicle-ride (305 s)", "phone-texting (", "phone-calling (", "phone-swinging (",
                            "phone-pocket (", "phone-running (", "phone-running-circles (", "phone (drawn per seed"}) {
     EXPECT_NE(help.find(text), std::string::npos) << text;
   }

@@ -44,7 +44,7 @@ FieldModel::FieldModel(const Scenario& scenario, const core::MagneticFieldElemen
       const double mean_gap_s = 60.0 / p.field.transients_per_min;
       for (double t = start + rng.exponential(mean_gap_s); t < start + p.duration_s; t += rng.exponential(mean_gap_s)) {
         const double peak = p.field.transient_peak_uT * rng.uniform(0.3, 1.0);
-        transients_.push_back({t, rng.uniform(0.4, 2.0), peak * rng.unitVector()});
+        transients_.push_back({t, rng.uniform(0.4, p.field.transient_max_half_width_s), peak * rng.unitVector()});
       }
     }
     start += p.duration_s;

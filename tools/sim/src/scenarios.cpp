@@ -6,27 +6,14 @@
 
 #include "headingd/sim/scenario.hpp"
 #include "headingd/sim/calibration_scenarios.hpp"
+#include "headingd/sim/disturbance_scenarios.hpp"
 #include "headingd/sim/motion_scenarios.hpp"
+#include "headingd/sim/phase_builders.hpp"
 #include "headingd/sim/phone_scenarios.hpp"
 
 namespace headingd::sim {
 
 namespace {
-
-Phase phase(Activity a, double duration_s, std::vector<Turn> turns = {}) {
-  Phase p;
-  p.activity = a;
-  p.duration_s = duration_s;
-  p.turns = std::move(turns);
-  return p;
-}
-
-Phase indoorPhase(Activity a, double duration_s, const FieldDisturbanceSpec& field, std::vector<Turn> turns = {}) {
-  Phase p = phase(a, duration_s, std::move(turns));
-  p.indoor = true;
-  p.field = field;
-  return p;
-}
 
 // Henriksson (2013) §6.3: straight walks of about 50 s outdoors in four directions in
 // Stockholm, GPS course against magnetic heading. Undisturbed field, clean sky.
@@ -68,9 +55,7 @@ Scenario urbanWalk() {
   building_b.random_offset_uT = 12.0;
   building_b.spatial_sigma_uT = 4.0;
   const auto outdoor = [&street](Activity a, double d, std::vector<Turn> turns = {}) {
-    Phase p = phase(a, d, std::move(turns));
-    p.field = street;
-    return p;
+    return fieldPhase(a, d, street, std::move(turns));
   };
   s.phases = {
       outdoor(Activity::kStanding, 10.0),
@@ -162,6 +147,7 @@ const char* activityName(Activity a) {
     case Activity::kCrawling: return "crawling";
     case Activity::kLyingBack: return "lying_back";
     case Activity::kLyingSide: return "lying_side";
+    case Activity::kRiding: return "riding";
   }
   return "unknown";
 }
@@ -196,7 +182,8 @@ PhaseTime phaseAt(const Scenario& s, double t_s) {
 std::vector<std::string> scenarioNames() {
   std::vector<std::string> names = {"thesis-declination", "urban-walk", "static-disturbed", "crawl", "run",
                                     "calib-six-position", "calib-rotation", "calib-rotation-long",
-                                    "shake", "shake-any", "handheld", "slow-rotation"};
+                                    "shake", "shake-any", "handheld", "slow-rotation", "indoor-static",
+                                    "moving-disturbances", "vehicle-ride"};
   for (std::string& name : phoneScenarioNames()) names.push_back(std::move(name));
   return names;
 }
@@ -207,6 +194,9 @@ Scenario makeScenario(std::string_view name, std::uint64_t seed) {
   if (name == "static-disturbed") return staticDisturbed();
   if (name == "crawl") return crawl();
   if (name == "run") return run();
+  if (name == "indoor-static") return indoorStaticScenario();
+  if (name == "moving-disturbances") return movingDisturbancesScenario();
+  if (name == "vehicle-ride") return vehicleRideScenario();
   if (name == "calib-six-position") return calibSixPosition();
   if (name == "calib-rotation") return calibRotation();
   if (name == "calib-rotation-long") return calibRotationLong();

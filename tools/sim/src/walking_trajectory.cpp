@@ -62,6 +62,7 @@ struct PhaseState {
 GaitParams phaseGait(const Phase& p) {
   GaitParams g = gaitParams(p.activity);
   if (p.held_still) g.sway_deg = 0.0;
+  g.speed_mps *= p.speed_scale;
   return g;
 }
 

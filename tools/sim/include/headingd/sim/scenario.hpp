@@ -12,7 +12,8 @@
 
 namespace headingd::sim {
 
-enum class Activity { kStanding, kWalking, kRunning, kCrawling, kLyingBack, kLyingSide };
+// kRiding: seated in a vehicle (the vehicle's speed, road vibration instead of steps).
+enum class Activity { kStanding, kWalking, kRunning, kCrawling, kLyingBack, kLyingSide, kRiding };
 const char* activityName(Activity a);  // "standing", "walking", ... (the truth.csv column)
 
 // A smooth heading change inside a phase (clockwise seen from above is positive, as yaw).
@@ -31,6 +32,9 @@ struct FieldDisturbanceSpec {
   double spatial_sigma_uT = 0.0;     // field varying with position (steel in walls, floors)
   double transients_per_min = 0.0;   // passing cars, opened steel doors...
   double transient_peak_uT = 0.0;    // largest peak; each draws U(0.3, 1) of it
+  // Each transient's half width (closest distance / speed) draws U(0.4 s, this): a car
+  // passing close by is over in a second, a lift moving past the landing takes several.
+  double transient_max_half_width_s = 2.0;
 };
 
 struct Phase {
@@ -42,6 +46,8 @@ struct Phase {
   // Standing without postural sway: the true rate is exactly zero (the short still start of a
   // phone recording, the phone held or set down before the walk begins).
   bool held_still = false;
+  // The activity's speed times this: a vehicle stopped at a light (0) or on a faster road.
+  double speed_scale = 1.0;
 };
 
 // Receiver conditions outdoors (indoors there is never a fix).
