@@ -90,7 +90,10 @@ echo "ok: $(grep -o '"gps_epochs[^n]*' "$work/err")"
 # 7. Bad options: 2, as every --help footer says.
 for tool in "$replay" "$eval_tool" "$nmea_dump" "$wmm"; do
   expect_status 2 "" "$tool" --no-such-option
-  "$tool" --help | grep -q "Exit codes: 0" || fail "$tool --help lists no exit codes"
+  # Captured first: grep -q stops reading at the match, and the tool writing the rest of its help
+  # into a closed pipe would fail the pipeline (pipefail).
+  help=$("$tool" --help)
+  grep -q "Exit codes: 0" <<<"$help" || fail "$tool --help lists no exit codes"
 done
 expect_status 2 "required" "$eval_tool" --estimates "$work/est.csv"
 echo "all passed"
