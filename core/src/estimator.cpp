@@ -344,7 +344,8 @@ void Estimator::applyFieldUpdates(const Vec3& filtered_uT, const Vec3& sample_uT
     // Standing: the level, and a specific force that stands still too (quasi_static_field_update.hpp).
     const bool standing = motion_.level() == MotionLevel::kStanding && out_.accel_quasi_static;
     out_.qsf_mag_update_applied =
-        qsf_mag_update_.update(ekf_, sample_uT, out_.mag_quasi_static && standing, !out_.mag_used,
+        qsf_mag_update_.update(ekf_, sample_uT, qsf_frame_.frameFromSensor(), out_.mag_quasi_static && standing,
+                               !out_.mag_used,
                                qsf_field_interval_s_, heading_uncertainty_.rateSigmaRadS()) != 0.0;
   }
 }

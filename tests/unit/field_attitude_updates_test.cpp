@@ -164,32 +164,51 @@ TEST(QuasiStaticFieldUpdate, HoldsTheHeadingToThePeriodsStartWhileTheFieldIsSetA
   QuasiStaticFieldUpdate qsf(qsfParams());
   const Vec3 measured = truth.conjugate() * disturbed_ned;
   constexpr double kRateSigma = 0.05;  // rad/s: 2.9° of drift in one second
-  EXPECT_EQ(qsf.update(ekf, measured, true, true, 0.01, kRateSigma), 0.0);  // the period's reference
+  // The gyro's frame: where the gyro alone carries the attitude (the EKF follows it between updates).
+  Quat gyro = ekf.attitude();
+  EXPECT_EQ(qsf.update(ekf, measured, gyro, true, true, 0.01, kRateSigma), 0.0);  // the period's reference
   // Over a second the gyro drifts the estimate by 3° about down; the field has not turned.
   ekf.turnHeading(3.0 * kDeg);
-  EXPECT_EQ(qsf.update(ekf, measured, true, /*set_aside=*/false, 0.5, kRateSigma), 0.0);  // the observer's
+  gyro = headingRotation(3.0 * kDeg) * gyro;
+  EXPECT_EQ(qsf.update(ekf, measured, gyro, true, /*set_aside=*/false, 0.5, kRateSigma), 0.0);  // the observer's
   // One sample at 1 µT says the heading to about 2°; twenty of them to a fraction of a degree.
-  const double first_turn = qsf.update(ekf, measured, true, true, 0.5, kRateSigma);
+  const double first_turn = qsf.update(ekf, measured, gyro, true, true, 0.5, kRateSigma);
   EXPECT_LT(first_turn, -1.5 * kDeg);
-  for (int i = 1; i < 20; ++i) qsf.update(ekf, measured, true, true, 0.01, kRateSigma);
+  for (int i = 1; i < 20; ++i) qsf.update(ekf, measured, gyro, true, true, 0.01, kRateSigma);
   EXPECT_NEAR(yawErrorDeg(ekf.attitude(), truth), 0.0, 0.1);
   EXPECT_EQ(qsf.counters().applied, 20u);
   // The period ends: the next one takes a new reference rather than the old.
-  EXPECT_EQ(qsf.update(ekf, measured, false, true, 0.01, kRateSigma), 0.0);
+  EXPECT_EQ(qsf.update(ekf, measured, gyro, false, true, 0.01, kRateSigma), 0.0);
   ekf.turnHeading(3.0 * kDeg);
-  EXPECT_EQ(qsf.update(ekf, measured, true, true, 0.01, kRateSigma), 0.0);
-  EXPECT_NEAR(qsf.update(ekf, measured, true, true, 0.01, kRateSigma), 0.0, 1e-9);
+  gyro = headingRotation(3.0 * kDeg) * gyro;
+  EXPECT_EQ(qsf.update(ekf, measured, gyro, true, true, 0.01, kRateSigma), 0.0);
+  EXPECT_NEAR(qsf.update(ekf, measured, gyro, true, true, 0.01, kRateSigma), 0.0, 1e-9);
+}
+
+TEST(QuasiStaticFieldUpdate, TheEkfsTiltCorrectionsAreNotTakenForHeadingDrift) {
+  // Standing in a static field, gravity corrects the EKF's tilt by 0.5° during the period: the
+  // reference, taken with the old tilt, then points elsewhere by about 0.5°·tan(dip) in heading.
+  // Compared through the gyro's frame (which did not move) there is nothing to correct.
+  const Quat truth = attitude(0.0, 0.0, 40.0);
+  AttitudeEkf ekf = ekfAt(attitude(0.5, 0.0, 40.0), 0.1);
+  QuasiStaticFieldUpdate qsf(qsfParams());
+  const Vec3 measured = truth.conjugate() * kFieldNed;
+  const Quat gyro = Quat::Identity();
+  qsf.update(ekf, measured, gyro, true, true, 0.01, 0.05);
+  ekf.setAttitude(truth);  // gravity's correction of the tilt
+  for (int i = 0; i < 20; ++i) qsf.update(ekf, measured, gyro, true, true, 0.01, 0.05);
+  EXPECT_LT(std::abs(yawErrorDeg(ekf.attitude(), truth)), 0.05);
 }
 
 TEST(QuasiStaticFieldUpdate, AFieldThatMovedFurtherThanTheGyroCanDriftIsRejected) {
   const Quat truth = attitude(0.0, 0.0, 0.0);
   AttitudeEkf ekf = ekfAt(truth, 1.0);
   QuasiStaticFieldUpdate qsf(qsfParams());
-  qsf.update(ekf, truth.conjugate() * kFieldNed, true, true, 0.01, 0.01);
+  qsf.update(ekf, truth.conjugate() * kFieldNed, Quat::Identity(), true, true, 0.01, 0.01);
   // 30° in a second, where the gyro's rate error allows 0.6°: the field moved, not the heading.
   const Vec3 moved = attitude(0.0, 0.0, 30.0).conjugate() * kFieldNed;
   const Vec4 before = ekf.state();
-  EXPECT_EQ(qsf.update(ekf, moved, true, true, 1.0, 0.01), 0.0);
+  EXPECT_EQ(qsf.update(ekf, moved, Quat::Identity(), true, true, 1.0, 0.01), 0.0);
   EXPECT_EQ(qsf.counters().rejected_by_gate, 1u);
   EXPECT_EQ(ekf.state(), before);
 }
@@ -204,9 +223,9 @@ TEST(QuasiStaticFieldUpdate, TurningWithinThePeriodWeighsTheResidualHardIron) {
     auto params = qsfParams();
     params.residual_hard_iron_uT = allowance;
     QuasiStaticFieldUpdate qsf(params);
-    qsf.update(ekf, start.conjugate() * kFieldNed + residual_s, true, true, 0.01, 0.05);
+    qsf.update(ekf, start.conjugate() * kFieldNed + residual_s, start, true, true, 0.01, 0.05);
     ekf.setAttitude(turned);  // the gyro's turn, exact
-    qsf.update(ekf, turned.conjugate() * kFieldNed + residual_s, true, true, 1.0, 0.05);
+    qsf.update(ekf, turned.conjugate() * kFieldNed + residual_s, turned, true, true, 1.0, 0.05);
     const double error_deg = std::abs(yawErrorDeg(ekf.attitude(), turned));
     if (allowance == 0.0) {
       EXPECT_GT(error_deg, 2.0);

@@ -58,8 +58,10 @@ class QuasiStaticFieldUpdate {
   // field_period_s: the time since the previous field sample; rate_sigma_rad_s: the sigma of the
   // gyro's rate error about the vertical. Returns the heading turn applied (rad about NED down;
   // 0 if none).
-  double update(AttitudeEkf& ekf, const Vec3& field_uT, bool in_period, bool set_aside, double field_period_s,
-                double rate_sigma_rad_s);
+  // gyro_frame_from_sensor: the sensor's attitude in a frame the bias-corrected gyro alone
+  // carries (the detectors' GyroFrame).
+  double update(AttitudeEkf& ekf, const Vec3& field_uT, const Quat& gyro_frame_from_sensor, bool in_period,
+                bool set_aside, double field_period_s, double rate_sigma_rad_s);
   // After a gap: the period's reference no longer holds.
   void restart() { has_reference_ = false; }
 
@@ -70,6 +72,8 @@ class QuasiStaticFieldUpdate {
   bool has_reference_ = false;
   Vec3 reference_ned_uT_ = Vec3::Zero();
   Quat start_attitude_ = Quat::Identity();  // the sensor's at the period's start
+  Quat start_gyro_frame_ = Quat::Identity();  // its attitude in the gyro's frame then
+  double heading_corrected_rad_ = 0.0;        // turned by this update since the start
   double drift_sigma_rad_ = 0.0;            // of the heading's change since then
   FieldUpdateCounters counters_;
 };
