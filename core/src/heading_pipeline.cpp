@@ -123,19 +123,31 @@ std::size_t HeadingPipeline::compassMinSamples(std::int64_t gps_t_ns) const {
   return static_cast<std::size_t>(std::max(1.0, 0.5 * interval_s / period_s));
 }
 
+bool HeadingPipeline::useModelAt(const GeodeticPosition& position, double decimal_year) {
+  const MagneticFieldElements field = wmm_->field(position, decimal_year);
+  constexpr double kRad = std::numbers::pi / 180.0;
+  if (!std::isfinite(field.f_nT) || !std::isfinite(field.inclination_deg) || !std::isfinite(field.declination_deg)) {
+    return false;
+  }
+  estimator_.setReferenceField(field.f_nT * 1e-3, field.inclination_deg * kRad);
+  wmm_declination_rad_ = field.declination_deg * kRad;
+  return true;
+}
+
+bool HeadingPipeline::setPlace(const GeodeticPosition& position, double decimal_year) {
+  if (wmm_ == nullptr || !useModelAt(position, decimal_year)) return false;
+  updateDeclination();
+  updateOutput();
+  return true;
+}
+
 const char* HeadingPipeline::processGps(const GpsObservation& given) {
   const char* problem = nullptr;
   const GpsObservation gps = usableValues(given, gps_values_ignored_, &problem);
-  if (gps.fix_ok && gps.position && gps.decimal_year && wmm_ != nullptr) {
-    const MagneticFieldElements field = wmm_->field(*gps.position, *gps.decimal_year);
-    constexpr double kRad = std::numbers::pi / 180.0;
-    if (std::isfinite(field.f_nT) && std::isfinite(field.inclination_deg) && std::isfinite(field.declination_deg)) {
-      estimator_.setReferenceField(field.f_nT * 1e-3, field.inclination_deg * kRad);
-      wmm_declination_rad_ = field.declination_deg * kRad;
-    } else {
-      ++gps_values_ignored_;  // a date so far from the model's epoch that the field overflows
-      if (problem == nullptr) problem = "date where the World Magnetic Model's field is not finite";
-    }
+  const bool model_there = gps.fix_ok && gps.position && gps.decimal_year && wmm_ != nullptr;
+  if (model_there && !useModelAt(*gps.position, *gps.decimal_year)) {
+    ++gps_values_ignored_;  // a date so far from the model's epoch that the field overflows
+    if (problem == nullptr) problem = "date where the World Magnetic Model's field is not finite";
   }
   if (gps.magvar_rad) receiver_magvar_rad_ = *gps.magvar_rad;
   if (gps.fix_ok && gps.speed_mps && *gps.speed_mps >= p_.gait_min_speed_mps) last_walking_gps_ns_ = gps.t_ns;

@@ -28,7 +28,8 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   toml::table doc = core::parseTomlDocument(text, source);
 
   // The daemon's own tables; the sources' are the registry's.
-  std::vector<std::string> tables = {"daemon", "log", "realtime", "rings", "lcm", "estimator", "recorder", "nmea_out"};
+  std::vector<std::string> tables = {"daemon", "log",      "realtime", "rings",   "lcm",
+                                     "estimator", "place", "recorder", "nmea_out"};
   for (std::string& t : sourceTableNames()) tables.push_back(std::move(t));
   core::rejectUnknownTables(doc, source, tables);
 
@@ -97,6 +98,10 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   lcm.rejectUnknownKeys();
 
   c.estimator = core::parseEstimatorTable(doc["estimator"].as_table(), source);
+  c.place = core::parsePlaceTable(doc["place"].as_table(), source);
+  if (c.place && c.wmm_path.empty()) {
+    throw core::ConfigError(source + ": [place] needs the World Magnetic Model; [daemon] wmm is \"\"");
+  }
   c.recorder = parseRecorderTable(doc["recorder"].as_table(), source, base_dir);
   c.nmea_out = parseNmeaOutTable(doc["nmea_out"].as_table(), source, c.rate_hz);
 

@@ -36,12 +36,25 @@ bool hasLiveSource(const SourceConfigs& configs) {
 
 }  // namespace
 
+void Daemon::usePlace() {
+  core::ConfiguredPlace& place = *config_.place;
+  std::string warning;
+  try {
+    place.decimal_year = core::placeDecimalYear(place, core::decimalYearOfUnixNs(realtimeNs()), *wmm_, &warning);
+  } catch (const core::ConfigError& e) {
+    throw core::ConfigError(config_.source + ": " + e.what());
+  }
+  if (!warning.empty()) spdlog::warn("[place]: {}", warning);
+  spdlog::info("{}", core::describePlace(place.position, *place.decimal_year, *wmm_));
+}
+
 Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   calibration_ = loadCalibration(config_.calibration_path);
   if (!config_.wmm_path.empty()) {
     wmm_ = std::make_unique<core::WorldMagneticModel>(
         core::parseWmmCoefficients(files::readMaybeGzipFile(config_.wmm_path, files::kWmmFileLimit), config_.wmm_path));
   }
+  if (config_.place) usePlace();
   // Each source gets its own rings (single producer each); see daemon/README.md, "Sources".
   const SourceConfigs& configs = config_.sources;
   makeRecorder();

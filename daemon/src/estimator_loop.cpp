@@ -65,6 +65,9 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
   imu_batch_.reserve(imu_capacity);
   gps_order_.reserve(2 * gps_capacity + 1);
   placed_gps_.reserve(2 * gps_capacity + 1);
+  if (config.place && config.place->decimal_year) {
+    pipeline_.setPlace(config.place->position, *config.place->decimal_year);
+  }
   for (const Source* s : sources_) source_names_.push_back(s->name());
   source_reports_.resize(sources_.size());
   ring_drops_seen_.assign(imu_rings_.size() + gps_rings_.size(), 0);

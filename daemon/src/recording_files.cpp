@@ -57,6 +57,13 @@ std::vector<std::pair<std::string, std::string>> recordingFiles(const DaemonConf
     files.emplace_back(std::string(name), files::readMaybeGzipFile(path, limit));
     copies += "\"" + std::string(name) + "\" = \"" + path + "\"\n";
   };
+  if (config.place && config.place->decimal_year) {
+    // The date the run took (the table may have given none: then it was the day it started).
+    if (auto* place = doc["place"].as_table()) {
+      place->erase("date");
+      place->insert_or_assign("decimal_year", *config.place->decimal_year);
+    }
+  }
   if (!config.wmm_path.empty()) {
     copy(kWmmFile, config.wmm_path, files::kWmmFileLimit);
     set(doc, "daemon", "wmm", kWmmFile);

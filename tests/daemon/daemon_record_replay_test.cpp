@@ -5,7 +5,8 @@
 // allows) and by the daemon itself on the recording's replay.toml at 4x speed (lcm-logger
 // again). Every HEADING and ATTITUDE message with an estimate, live and replayed, must equal
 // the replay's state of the same sample, bit for bit, in every field but utime,
-// sample_age_us and validity. Run through tools/scripts/vm-run.sh (vcan0 in a VM or a
+// sample_age_us and validity. The live run has a [place] without a date, which the recording
+// must carry as the date the run took. Run through tools/scripts/vm-run.sh (vcan0 in a VM or a
 // private namespace). HEADINGD_KEEP_RECORDING=DIR copies the recording there.
 #include <gtest/gtest.h>
 
@@ -66,7 +67,10 @@ TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
   const std::string config = dir.write(
       "live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url + "\"\n" +
                        can_table + "\n[gps]\nenabled = true\ndevice = \"" + gps.slavePath() +
-                       "\"\nbaud = 9600\n[recorder]\ndir = \"" + dir.file("recordings") + "\"\n");
+                       "\"\nbaud = 9600\n[recorder]\ndir = \"" + dir.file("recordings") + "\"\n" +
+                       // A place without a date: the daemon takes the system's, and the recording must
+                       // carry the one it took for the replays to be bit-exact.
+                       "[place]\nlatitude_deg = 59.33\nlongitude_deg = 18.07\n");
   ChildProcess logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", dir.file("live.lcm")},
                       dir.file("logger.out"), dir.file("logger.err"));
   test::LcmCollector lcm(url);
@@ -93,6 +97,9 @@ TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
   if (const char* keep = std::getenv("HEADINGD_KEEP_RECORDING")) {
     std::filesystem::copy(recording, keep, std::filesystem::copy_options::recursive);
   }
+
+  EXPECT_NE(test::readFile(recording + "/config.toml").find("decimal_year = 20"), std::string::npos)
+      << "the recording does not carry the place's date";
 
   // Replay 1: every state the estimator went through.
   run(std::string(HEADINGD_REPLAY_BIN) + " --recording " + recording + " --lcm-log " + dir.file("states.lcm") +

@@ -1,9 +1,11 @@
 // headingd-replay: runs the estimator over a recorded IMU CSV as fast as the CPU allows and
 // writes one estimate per input row. Reads, estimates and writes row by row
 // (headingd/replay/replay_loop.hpp), so memory stays flat whatever the input's length.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "headingd/cli/parse_command_line.hpp"
 #include "headingd/core/heading_pipeline.hpp"
@@ -21,6 +23,7 @@
 #include "headingd/replay/replay_report.hpp"
 #include "headingd/replay/smooth_replay.hpp"
 #include "src/recording_replay.hpp"
+#include "src/replay_place.hpp"
 
 namespace {
 
@@ -46,6 +49,33 @@ void refuseOverwritingInputs(const std::vector<files::NamedPath>& outputs, std::
     for (std::size_t j = 0; j < i; ++j) others.push_back(outputs[j]);
     if (!outputs[i].second.empty()) files::refuseOutputOverInputs(outputs[i], others);
   }
+}
+
+// --place LAT,LON[,HEIGHT_M] and --place-date YYYY-MM-DD; throws std::invalid_argument
+// naming the option.
+core::ConfiguredPlace placeOption(const std::vector<double>& values, const std::string& date) {
+  core::ConfiguredPlace place;
+  place.position.latitude_deg = values.at(0);
+  place.position.longitude_deg = values.at(1);
+  place.position.height_km = values.size() > 2 ? 1e-3 * values[2] : 0.0;
+  if (!(std::abs(place.position.latitude_deg) <= 90.0) || !(std::abs(place.position.longitude_deg) <= 180.0) ||
+      !(place.position.height_km >= -1.0 && place.position.height_km <= 850.0)) {
+    throw std::invalid_argument("--place: expected LAT in [-90, 90], LON in [-180, 180] degrees and HEIGHT_M in "
+                                "[-1000, 850000] m");
+  }
+  if (!date.empty()) {
+    int y = 0, m = 0, d = 0;
+    char tail = 0;
+    if (std::sscanf(date.c_str(), "%4d-%2d-%2d%c", &y, &m, &d, &tail) != 3) {
+      throw std::invalid_argument("--place-date: '" + date + "': expected YYYY-MM-DD");
+    }
+    try {
+      place.decimal_year = core::decimalYear(y, m, d);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--place-date: '" + date + "': " + e.what());
+    }
+  }
+  return place;
 }
 
 }  // namespace
@@ -92,6 +122,18 @@ int main(int argc, char** argv) {
                  "turns and the raw one does not, e.g. the magnet it was made for is gone) and taken back when "
                  "it fits again");
   app.add_option("--wmm", wmm_path, "World Magnetic Model coefficients (NOAA COF)")->capture_default_str();
+  std::vector<double> place_values;
+  std::string place_date;
+  auto* place_option =
+      app.add_option("--place", place_values,
+                     "LAT,LON[,HEIGHT_M]: where the recording was made (degrees, metres above the WGS-84 ellipsoid), "
+                     "as the daemon's [place]: the World Magnetic Model there gives the reference field and the "
+                     "declination until a GPS fix (--nmea) gives a position; adds the true-heading columns of --nmea")
+          ->delimiter(',')
+          ->expected(2, 3);
+  app.add_option("--place-date", place_date, "YYYY-MM-DD: the date for --place (default: today, as the daemon)")
+      ->needs(place_option);
+  place_option->excludes(recording_option);
   bool smooth = false;
   auto* smooth_option = app.add_flag(
       "--smooth", smooth,
@@ -105,7 +147,9 @@ int main(int argc, char** argv) {
              "written (the message names the file), 2 bad arguments (also an output that is an input).") + "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
+  std::optional<core::ConfiguredPlace> place;
   try {
+    if (!place_values.empty()) place = placeOption(place_values, place_date);
     if (!recording.dir.empty() && out.empty() && recording.lcm_log.empty()) {
       throw std::runtime_error("--recording needs --out or --lcm-log");
     }
@@ -144,12 +188,16 @@ int main(int argc, char** argv) {
       gps = files::readNmeaEpochs(nmea_path, nmea_first_epoch_t);
       wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(wmm_path, files::kWmmFileLimit), wmm_path));
     }
+    if (place && !wmm) {
+      wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(wmm_path, files::kWmmFileLimit), wmm_path));
+    }
     core::HeadingPipeline pipeline(params, wmm ? &*wmm : nullptr);
+    if (place) replay::usePlace(pipeline, *place, *wmm);
     replay::GpsOrder order;
     order.reserve(gps.epochs.size());
     for (const core::GpsObservation& epoch : gps.epochs) order.pushGps(epoch);
 
-    replay::ReplayCsvWriter writer(out, with_gps);
+    replay::ReplayCsvWriter writer(out, with_gps || place.has_value());
     const auto nextSample = [&](core::ImuSample* sample) {
       if (!imu.next(sample)) return false;
       if (calibrated) *sample = calibration.apply(*sample);

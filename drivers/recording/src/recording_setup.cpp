@@ -49,6 +49,7 @@ RecordingSetup loadRecordingSetup(const std::string& folder_in) {
     s.gps = nmea::parseGpsTable(gps, config_path);
   }
   s.estimator = core::parseEstimatorTable(core::tableOf(config, "estimator", config_path), config_path);
+  s.place = core::parsePlaceTable(core::tableOf(config, "place", config_path), config_path);
   if (const toml::table* daemon = core::tableOf(config, "daemon", config_path)) {
     core::TomlTableReader d(daemon, config_path, "daemon");
     if (const std::string wmm = d.string("wmm", ""); !wmm.empty()) s.wmm_path = inFolder(s.folder, wmm);

@@ -19,6 +19,7 @@
 #include "headingd/recording/recording_reader.hpp"
 #include "headingd/replay/replay_csv_writer.hpp"
 #include "headingd/replay/replay_report.hpp"
+#include "replay_place.hpp"
 
 namespace headingd::replay {
 namespace {
@@ -93,6 +94,7 @@ int replayRecording(const RecordingReplayOptions& options) {
         core::parseImuCalibration(files::readMaybeGzipFile(setup.calibration_path, files::kConfigFileLimit), setup.calibration_path));
   }
   core::HeadingPipeline pipeline(setup.estimator, wmm ? &*wmm : nullptr);
+  if (setup.place && wmm) usePlace(pipeline, *setup.place, *wmm);
   recording::RecordingReader reader(setup);
 
   std::unique_ptr<ReplayCsvWriter> rows;

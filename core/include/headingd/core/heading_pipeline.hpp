@@ -47,6 +47,11 @@ class HeadingPipeline {
   // Returns what the first value left out was (for a log line), nullptr when all were used.
   const char* processGps(const GpsObservation& gps);
 
+  // A configured place (configured_place.hpp): the World Magnetic Model there on that date
+  // gives the reference field and the WMM declination until a GPS fix gives a position. False
+  // (and nothing changes) without a model or where its field is not finite.
+  bool setPlace(const GeodeticPosition& position, double decimal_year);
+
   const HeadingOutput& output() const { return out_; }
   const Estimator& estimator() const { return estimator_; }
   std::uint64_t gpsEpochsUsedForDeclination() const { return course_minus_heading_.epochs(); }
@@ -55,7 +60,9 @@ class HeadingPipeline {
  private:
   bool courseGatesPass(const GpsObservation& gps, double sensor_heading) const;
   std::size_t compassMinSamples(std::int64_t gps_t_ns) const;
-  void updateDeclination();  // at GPS epochs: the sources change only then
+  // The model's reference field and declination at a position; false if not finite there.
+  bool useModelAt(const GeodeticPosition& position, double decimal_year);
+  void updateDeclination();  // at GPS epochs (and a configured place): the sources change only then
   void updateOutput();       // every sample: cheap, no allocation
 
   EstimatorParams p_;

@@ -4,10 +4,12 @@
 // what each does. Relative paths are taken from the folder of the configuration file.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "headingd/core/configured_place.hpp"
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/params_toml.hpp"  // core::ConfigError
 #include "headingd/daemon/nmea_out_config.hpp"
@@ -60,6 +62,9 @@ struct DaemonConfig {
   bool publish_on_imu = false;  // [daemon] publish = "imu": also publish as each IMU sample arrives
   std::string wmm_path;         // World Magnetic Model coefficients ("" = none)
   std::string calibration_path; // IMU calibration (headingd-calibrate --out; "" = none), re-read on SIGHUP
+  // [place]: where the WMM is evaluated until a GPS fix. The daemon fills in the date at
+  // start-up when the table gives none (Daemon::Daemon), so a recording replays it exactly.
+  std::optional<core::ConfiguredPlace> place;
   // [rings]
   std::size_t imu_ring_capacity = 4096;
   std::size_t gps_ring_capacity = 64;

@@ -47,6 +47,9 @@ class Daemon {
   LoopSummary summary() const;
 
  private:
+  // [place]: its date chosen (the system's when the table gives none), what the WMM says
+  // there logged.
+  void usePlace();
   void makeRecorder();
   void startRecorder();
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "headingd/can/can_config.hpp"
+#include "headingd/core/configured_place.hpp"
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/nmea/serial_gps_config.hpp"
 
@@ -20,6 +21,7 @@ struct RecordingSetup {
   std::optional<can::CanConfig> can;    // the [can] table, if the run had one
   std::optional<nmea::SerialGpsConfig> gps;  // the [gps] table, if the run had one
   core::EstimatorParams estimator;
+  std::optional<core::ConfiguredPlace> place;  // the [place] table, with the date the run took
   std::string wmm_path;          // in the folder; "" = the run had none
   std::string calibration_path;  // in the folder; "" = none
 };
