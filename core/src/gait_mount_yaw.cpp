@@ -4,6 +4,8 @@
 #include <limits>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::core {
 
 void GaitMountYawEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s) {
@@ -65,7 +67,7 @@ double GaitMountYawEstimator::mountYawRad() const {
 double GaitMountYawEstimator::sigmaRad() const {
   if (!hasEstimate()) return std::numeric_limits<double>::infinity();
   // Fewer than three blocks say little about their spread: stay at a cautious 10°.
-  if (block_axes_.count() < 3) return 10.0 * std::numbers::pi / 180.0;
+  if (block_axes_.count() < 3) return 10.0 * kRadPerDeg;
   return 0.5 * block_axes_.standardError();  // halved: the blocks' angles are doubled
 }
 

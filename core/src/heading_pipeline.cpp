@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::core {
 namespace {
 
@@ -125,12 +127,11 @@ std::size_t HeadingPipeline::compassMinSamples(std::int64_t gps_t_ns) const {
 
 bool HeadingPipeline::useModelAt(const GeodeticPosition& position, double decimal_year) {
   const MagneticFieldElements field = wmm_->field(position, decimal_year);
-  constexpr double kRad = std::numbers::pi / 180.0;
   if (!std::isfinite(field.f_nT) || !std::isfinite(field.inclination_deg) || !std::isfinite(field.declination_deg)) {
     return false;
   }
-  estimator_.setReferenceField(field.f_nT * 1e-3, field.inclination_deg * kRad);
-  wmm_declination_rad_ = field.declination_deg * kRad;
+  estimator_.setReferenceField(field.f_nT * 1e-3, field.inclination_deg * kRadPerDeg);
+  wmm_declination_rad_ = field.declination_deg * kRadPerDeg;
   return true;
 }
 

@@ -1,12 +1,15 @@
 #include "headingd/core/imu_calibration_toml.hpp"
-#include "headingd/core/toml_document.hpp"
-#include "headingd/core/toml_table_reader.hpp"
+
+#include <toml++/toml.h>
 
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <sstream>
-#include <toml++/toml.h>
+
+#include "headingd/core/angles.hpp"
+#include "headingd/core/toml_document.hpp"
+#include "headingd/core/toml_table_reader.hpp"
 
 namespace headingd::core {
 namespace {
@@ -85,7 +88,7 @@ ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string
     else mag.fail("field_norm_source", "expected \"wmm\", \"argument\" or \"data\", got \"" + s + "\"");
   }
   c.mag.field_norm_detail = mag.string("field_norm_detail", c.mag.field_norm_detail);
-  if (mag.has("dip_deg")) c.mag.dip_rad = mag.number("dip_deg", 0.0, -90.0, 90.0, "degrees") * std::numbers::pi / 180.0;
+  if (mag.has("dip_deg")) c.mag.dip_rad = mag.number("dip_deg", 0.0, -90.0, 90.0, "degrees") * kRadPerDeg;
   if (mag.has("noise_sigma_uT")) c.mag.noise_sigma_uT = mag.vec3("noise_sigma_uT", Vec3::Zero(), "uT");
   mag.rejectUnknownKeys();
 
@@ -133,7 +136,7 @@ std::string formatImuCalibration(const ImuCalibration& c) {
   if (c.mag.field_norm_uT > 0.0) o << "field_norm_uT = " << num(c.mag.field_norm_uT) << "\n";
   o << "field_norm_source = " << quoted(fieldNormSourceName(c.mag.field_norm_source)) << "\n";
   o << "field_norm_detail = " << quoted(c.mag.field_norm_detail) << "\n";
-  if (c.mag.dip_rad) o << "dip_deg = " << num(*c.mag.dip_rad * 180.0 / std::numbers::pi) << "\n";
+  if (c.mag.dip_rad) o << "dip_deg = " << num(*c.mag.dip_rad * kDegPerRad) << "\n";
   if (c.mag.noise_sigma_uT) o << "noise_sigma_uT = " << vec(*c.mag.noise_sigma_uT) << "\n";
   o << "\n[gyroscope]\n";
   o << "bias_rad_s = " << vec(c.gyro.bias_rad_s) << "\n";

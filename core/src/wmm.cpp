@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::core {
 namespace {
 
@@ -15,7 +17,6 @@ namespace {
 constexpr double kWmmReferenceRadius_m = 6371200.0;
 // The secular variation is a linear fit valid for five years from the epoch.
 constexpr double kValidityYears = 5.0;
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 using GeographicLib::SphericalEngine;
 
@@ -114,8 +115,8 @@ MagneticFieldElements WorldMagneticModel::field(const GeodeticPosition& position
   e.z_nT = -up;
   e.h_nT = std::hypot(e.x_nT, e.y_nT);
   e.f_nT = std::hypot(e.h_nT, e.z_nT);
-  e.inclination_deg = std::atan2(e.z_nT, e.h_nT) * kRadToDeg;
-  e.declination_deg = std::atan2(e.y_nT, e.x_nT) * kRadToDeg;
+  e.inclination_deg = std::atan2(e.z_nT, e.h_nT) * kDegPerRad;
+  e.declination_deg = std::atan2(e.y_nT, e.x_nT) * kDegPerRad;
   e.date_within_validity = isDateWithinValidity(decimal_year);
   return e;
 }

@@ -12,7 +12,7 @@
 #include "headingd/daemon/median_step.hpp"
 #include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/input_file.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 
 namespace headingd::daemon {
 

@@ -12,7 +12,7 @@
 #include "headingd/recording/recording_format.hpp"
 #include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/source_registry.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 
 namespace headingd::daemon {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/daemon/clocks.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/daemon/logging.hpp"
 #include "headingd/daemon/realtime.hpp"
 

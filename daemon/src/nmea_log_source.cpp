@@ -10,7 +10,7 @@
 #include "headingd/daemon/readable_path.hpp"
 #include "headingd/files/nmea_epochs.hpp"
 #include "headingd/files/input_file.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/nmea/gps_observation_from_fix.hpp"
 
 namespace headingd::daemon {

@@ -4,10 +4,12 @@
 #include <numbers>
 #include <optional>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::daemon {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 
 bool hasTrueHeading(const core::HeadingOutput& h, Validity v) {
   return v != Validity::kNone && h.declination_sources != core::kDeclNone;

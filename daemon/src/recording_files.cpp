@@ -7,7 +7,7 @@
 
 #include "headingd/core/toml_document.hpp"
 #include "headingd/daemon/clocks.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/recording/recording_format.hpp"
 #include "headingd/daemon/can_imu_source.hpp"
 

@@ -4,10 +4,12 @@
 #include <numbers>
 #include <string_view>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::daemon {
 namespace {
 
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 
 double us(double ns) { return ns * 1e-3; }
 
@@ -158,10 +160,12 @@ void formatStatusLine(const status_t& m, const core::HeadingOutput& h, Validity 
                 "%s%s%s | heading %s%.1f deg true, %.1f deg magnetic | declination %.2f deg (%s) | disturbed %s | "
                 "HEADING %.1f Hz, IMU %.1f Hz, GPS %.1f Hz | jitter p99 %.0f us, tick p99 %.0f us",
                 m.state.c_str(), m.reason.empty() ? "" : ": ", m.reason.c_str(),
-                v == Validity::kFresh ? "" : v == Validity::kStale ? "(stale) " : "(none) ", h.heading_true_rad * kDeg,
-                h.heading_mag_rad * kDeg, h.declination_rad * kDeg, core::declinationSourceName(h.declination_sources),
-                h.attitude.mag_disturbed ? "yes" : "no", m.heading_rate_hz, m.imu_rate_hz, m.gps_rate_hz,
-                m.tick_jitter_p99_us, m.processing_p99_us);
+                v == Validity::kFresh   ? ""
+                : v == Validity::kStale ? "(stale) "
+                                        : "(none) ",
+                h.heading_true_rad * kDegPerRad, h.heading_mag_rad * kDegPerRad, h.declination_rad * kDegPerRad,
+                core::declinationSourceName(h.declination_sources), h.attitude.mag_disturbed ? "yes" : "no",
+                m.heading_rate_hz, m.imu_rate_hz, m.gps_rate_hz, m.tick_jitter_p99_us, m.processing_p99_us);
   out = line;
 }
 

@@ -13,6 +13,7 @@
 #include <numbers>
 #include <string>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/estimator.hpp"
 #include "headingd/core/orientation_error.hpp"
 #include "headingd/files/imu_csv.hpp"
@@ -22,7 +23,7 @@
 namespace {
 
 using namespace headingd;
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using headingd::core::kDegPerRad;
 
 struct Limits {
   double total_deg;
@@ -104,9 +105,9 @@ TEST(BroadAccuracy, EveryTrialWithinItsMeasuredLimitAndAveragesBeatVqf) {
     const std::string file = path.filename().string();
     const std::string trial = file.substr(0, file.size() - std::string(".csv.gz").size());
     const auto e = replayAndScore(path.string());
-    const double total = e.total_rad * kDeg, inclination = e.inclination_rad * kDeg;
+    const double total = e.total_rad * kDegPerRad, inclination = e.inclination_rad * kDegPerRad;
     std::printf("%-45s total %5.2f  heading %5.2f  inclination %5.2f deg\n", trial.c_str(), total,
-                e.heading_rad * kDeg, inclination);
+                e.heading_rad * kDegPerRad, inclination);
     const auto limit = kLimits.find(trial);
     const auto vqf = kVqfTotalDeg.find(trial);
     if (limit == kLimits.end() || vqf == kVqfTotalDeg.end()) {

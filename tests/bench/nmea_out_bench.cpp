@@ -8,6 +8,7 @@
 #include <numbers>
 #include <thread>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/daemon/nmea_out_sentences.hpp"
 #include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/nmea/heading_sentences.hpp"
@@ -20,7 +21,7 @@ core::HeadingOutput estimate(double true_deg) {
   core::HeadingOutput h;
   h.attitude.valid = true;
   h.attitude.mag_used = true;
-  h.heading_true_rad = true_deg * std::numbers::pi / 180.0;
+  h.heading_true_rad = true_deg * headingd::core::kRadPerDeg;
   h.declination_rad = 0.05;
   h.heading_mag_rad = h.heading_true_rad - h.declination_rad;
   h.declination_sources = core::kDeclWmm;

@@ -8,14 +8,15 @@
 #include <numbers>
 
 #include "calib_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/rng.hpp"
 
 namespace headingd::calib_test {
 namespace {
 
+using core::kRadPerDeg;
 using core::Mat3;
 using core::Vec3;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(StaticSegments, FindsTheSixFacesAndTheRests) {
   const sim::SimResult& r = simulated("calib-six-position", 1, sim::ImuGrade::kConsumer);
@@ -71,7 +72,7 @@ TEST(ThesisCalibration, GyroscopeBiasAndScale) {
   const auto bias = calib::gyroBiasAtRest(segments);
   for (int i = 0; i < 3; ++i) {
     // Offset up to 1°/s plus a bias drifting by ~0.07°/s (MAGYQ): within 0.15°/s.
-    EXPECT_NEAR(bias.bias_rad_s(i), r.gyro.offset(i), 0.15 * kDeg) << i;
+    EXPECT_NEAR(bias.bias_rad_s(i), r.gyro.offset(i), 0.15 * kRadPerDeg) << i;
     EXPECT_NEAR(bias.noise_sigma_rad_s(i), r.gyro.white_sigma(i), 0.2 * r.gyro.white_sigma(i)) << i;
   }
   const auto scale = calib::gyroScaleFromTurns(samples, segments, bias.bias_rad_s, 100.0);
@@ -96,13 +97,13 @@ TEST(ThesisCalibration, MagnetometerNewtonRecoversAnUpperTriangularModel) {
   }
   const auto segments = calib::findStaticSegments(samples);
   const auto faces = calib::findSixFaces(segments);
-  const double norm = fieldNorm(r), dip = r.wmm.inclination_deg * kDeg;
+  const double norm = fieldNorm(r), dip = r.wmm.inclination_deg * kRadPerDeg;
   for (const std::optional<double> given_dip : {std::optional<double>(dip), std::optional<double>()}) {
     const auto mag = calib::calibrateMagSixPosition(segments, faces, norm, given_dip);
     const Mat3 alpha_true = beta.inverse();
     EXPECT_LT((mag.alpha - alpha_true).cwiseAbs().maxCoeff(), 0.01) << mag.alpha;
     EXPECT_LT((mag.bias_uT - offset).norm(), 0.5);
-    EXPECT_NEAR(mag.dip_rad, dip, 0.3 * kDeg);
+    EXPECT_NEAR(mag.dip_rad, dip, 0.3 * kRadPerDeg);
     EXPECT_LT(mag.residual_rms_uT, 0.5);
   }
 }

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "calib_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/sim/output.hpp"
 
@@ -63,7 +64,7 @@ double headingRmseDeg(const fs::path& estimates, const sim::SimResult& truth) {
   const double offset = std::atan2(mean_sin, mean_cos);
   double sum2 = 0;
   for (const double e : errors) sum2 += std::pow(core::wrapAngle(e - offset), 2);
-  return std::sqrt(sum2 / static_cast<double>(errors.size())) * 180.0 / std::numbers::pi;
+  return std::sqrt(sum2 / static_cast<double>(errors.size())) * core::kDegPerRad;
 }
 
 TEST(CalibrateTool, EllipsoidCalibrationMakesHeadingsBetter) {

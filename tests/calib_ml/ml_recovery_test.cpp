@@ -8,11 +8,12 @@
 #include "headingd/calib/calibration_error.hpp"
 #include "headingd/calib/ml/ml_calibration.hpp"
 #include "headingd/calib_montecarlo/ks_simulation.hpp"
+#include "headingd/core/angles.hpp"
 
 namespace headingd::calib {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kRadPerDeg;
 
 MlCalibrationOptions optionsFor(const calib_montecarlo::KsRun& run) {
   MlCalibrationOptions o;
@@ -34,8 +35,8 @@ TEST_P(MlRecovery, RecoversDistortionOffsetDipAndGyroBias) {
   const calib_montecarlo::KsTruth& t = run.truth;
   EXPECT_LT((r.D - t.mag_D).norm(), 0.01) << r.D << "\n" << t.mag_D;
   EXPECT_LT((r.offset_uT - t.mag_offset_uT).norm(), 0.2);
-  EXPECT_NEAR(r.dip_rad, t.dip_rad, 0.05 * kDeg);
-  EXPECT_LT((r.gyro_bias_rad_s - t.gyro_bias_rad_s).norm(), 0.02 * kDeg);
+  EXPECT_NEAR(r.dip_rad, t.dip_rad, 0.05 * kRadPerDeg);
+  EXPECT_LT((r.gyro_bias_rad_s - t.gyro_bias_rad_s).norm(), 0.02 * kRadPerDeg);
   // The ML estimate is closer to the truth than the initial one, and the cost went down.
   EXPECT_LT((r.D - t.mag_D).norm(), (r.initial.D - t.mag_D).norm());
   EXPECT_LT(r.cost_final, r.cost_initial);
@@ -48,7 +49,7 @@ TEST_P(MlRecovery, RecoversDistortionOffsetDipAndGyroBias) {
   const double h0 = calib_montecarlo::headingRmseRad(run, r.initial.D, r.initial.offset_uT);
   const double h1 = calib_montecarlo::headingRmseRad(run, r.D, r.offset_uT);
   EXPECT_LT(h1, h0);
-  EXPECT_LT(h1, 0.2 * kDeg);
+  EXPECT_LT(h1, 0.2 * kRadPerDeg);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, MlRecovery, ::testing::Values(1, 2));

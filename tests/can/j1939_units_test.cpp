@@ -5,6 +5,7 @@
 
 #include "headingd/can/j1939.hpp"
 #include "headingd/can/units.hpp"
+#include "headingd/core/angles.hpp"
 
 namespace headingd::can {
 namespace {
@@ -40,11 +41,10 @@ TEST(J1939, DataPageIsPartOfThePgn) {
 }
 
 TEST(Units, FactorsToSi) {
-  constexpr double deg = std::numbers::pi / 180.0;
   EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::angular_rate, "rad/s"), 1.0);
-  EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::angular_rate, "deg/s"), deg);
-  EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::angular_rate, " dps "), deg);
-  EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::angular_rate, "\xC2\xB0/s"), deg);
+  EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::angular_rate, "deg/s"), core::kRadPerDeg);
+  EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::angular_rate, " dps "), core::kRadPerDeg);
+  EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::angular_rate, "\xC2\xB0/s"), core::kRadPerDeg);
   EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::acceleration, "g"), 9.80665);
   EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::acceleration, "mg"), 9.80665e-3);
   EXPECT_DOUBLE_EQ(*unitFactorToSi(Quantity::acceleration, "m/s^2"), 1.0);

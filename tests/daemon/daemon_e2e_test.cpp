@@ -2,16 +2,17 @@
 // subscriber using the generated types, signals, and the sd_notify protocol on a real
 // unix socket.
 #include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <sstream>
-#include <sys/socket.h>
-#include <sys/un.h>
 
 #include "daemon_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "lcm_collector.hpp"
 
 namespace headingd::daemon {
@@ -167,22 +168,21 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
     }
     const double chord = std::sqrt(std::min(minus, plus));
     max_angle_rad = std::max(max_angle_rad, 4.0 * std::asin(std::min(1.0, chord / 2.0)));
-    double yaw_diff = std::remainder(r.message.yaw_rad * 180.0 / std::numbers::pi - it->second.yaw_deg, 360.0);
+    double yaw_diff = std::remainder(r.message.yaw_rad * core::kDegPerRad - it->second.yaw_deg, 360.0);
     max_yaw_deg = std::max(max_yaw_deg, std::abs(yaw_diff));
     ++compared;
   }
   std::fprintf(stderr, "compared %zu ATTITUDE messages with headingd-replay: max angle %.3g deg, max yaw %.3g deg\n",
-               compared, max_angle_rad * 180.0 / std::numbers::pi, max_yaw_deg);
+               compared, max_angle_rad * core::kDegPerRad, max_yaw_deg);
   EXPECT_GT(compared, attitude.size() * 9 / 10);
-  EXPECT_LT(max_angle_rad * 180.0 / std::numbers::pi, 1e-4);
+  EXPECT_LT(max_angle_rad * core::kDegPerRad, 1e-4);
   EXPECT_LT(max_yaw_deg, 1e-4);
   // HEADING carries the same magnetic heading.
   for (const auto& h : heading) {
     if (h.message.validity != kFresh) continue;
     const auto it = replay.find(h.message.sample_utime);
     if (it == replay.end()) continue;
-    EXPECT_NEAR(std::remainder(h.message.heading_mag_rad * 180.0 / std::numbers::pi - it->second.yaw_deg, 360.0), 0.0,
-                1e-4);
+    EXPECT_NEAR(std::remainder(h.message.heading_mag_rad * core::kDegPerRad - it->second.yaw_deg, 360.0), 0.0, 1e-4);
   }
 }
 
@@ -485,7 +485,7 @@ TEST(DaemonEndToEnd, DemoCaptureFromCandumpAndNmeaLogsIsPlayedToTheEndAndFollows
     if (row + 1 >= truth_deg.size()) continue;
     const double f = static_cast<double>(since_us % 100'000) / 100'000.0;
     const double want = truth_deg[row] + f * std::remainder(truth_deg[row + 1] - truth_deg[row], 360.0);
-    errors.push_back(std::abs(std::remainder(h.message.heading_true_rad * 180.0 / std::numbers::pi - want, 360.0)));
+    errors.push_back(std::abs(std::remainder(h.message.heading_true_rad * core::kDegPerRad - want, 360.0)));
   }
   ASSERT_GT(errors.size(), 1000u);
   double sum_sq = 0.0;

@@ -2,9 +2,8 @@
 // capture's NMEA from a pty, compared with the serial source reading the same bytes; and
 // against a misbehaving peer (a small TCP server here) that sends garbage, closes mid-line
 // and goes away for a while.
-#include <gtest/gtest.h>
-
 #include <arpa/inet.h>
+#include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -16,9 +15,10 @@
 #include <sstream>
 
 #include "daemon_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "lcm_collector.hpp"
-#include "status_lookup.hpp"
 #include "pty_fixture.hpp"
+#include "status_lookup.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -33,7 +33,7 @@ using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
 constexpr const char* kCapture = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 
 std::optional<headingd::source_status_t> lastSource(const LcmCollector& lcm, const std::string& kind) {
   const auto s = lcm.status();
@@ -151,7 +151,7 @@ TEST(DaemonGpsdSource, RealGpsdGivesTheSameFixesAsTheSerialSource) {
     EXPECT_NEAR(m.decimal_year, twin->decimal_year, 1e-9);
     ASSERT_EQ(m.has_course, twin->has_course) << m.latitude_deg;
     if (m.has_course) {
-      EXPECT_NEAR(m.course_rad * kDeg, twin->course_rad * kDeg, 0.006);  // 0.01 deg in RMC
+      EXPECT_NEAR(m.course_rad * kDegPerRad, twin->course_rad * kDegPerRad, 0.006);  // 0.01 deg in RMC
     }
     ASSERT_EQ(m.has_speed, twin->has_speed);
     if (m.has_speed) {
@@ -306,7 +306,7 @@ TEST(DaemonGpsdSource, MisbehavingPeerIsCountedLoggedAndReconnectedWithoutAStall
   EXPECT_TRUE(gps[0].message.fix_ok);
   EXPECT_FALSE(gps[1].message.fix_ok);
   EXPECT_NEAR(gps.back().message.latitude_deg, 59.34 + 14e-5, 1e-9);
-  EXPECT_NEAR(gps.back().message.course_rad * kDeg, 45.0, 1e-9);
+  EXPECT_NEAR(gps.back().message.course_rad * kDegPerRad, 45.0, 1e-9);
   const std::string log = test::readFile(dir.file("err"));
   for (const char* kind : {"gpsd line malformed: not JSON", "gpsd line missing_fields: TPV without lat/lon",
                            "gpsd line oversized", "gpsd line cut", "gpsd closed the connection",

@@ -8,15 +8,16 @@
 // Scenario: the first kSeconds of headingd-sim's thesis-declination (Henriksson §6.3):
 // stand 10 s, walk north 50 s, stand, turn 90 degrees in place, walk east.
 #include <gtest/gtest.h>
+#include <net/if.h>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <net/if.h>
 #include <numbers>
 #include <sstream>
 
 #include "daemon_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "lcm_collector.hpp"
 #include "pty_fixture.hpp"
 #include "vcan_test_support.hpp"
@@ -28,7 +29,7 @@ using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::LcmCollector;
 
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 constexpr int kSeconds = 90;
 constexpr int kImuRateHz = 100;
 constexpr int kRows = kSeconds * kImuRateHz + 1;
@@ -175,7 +176,7 @@ TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
     const auto& row = truth[it->second + 1];
     if (std::strtod(row[0].c_str(), nullptr) < kCompareFromS) continue;
     const double want = std::strtod(row[1].c_str(), nullptr);
-    errors.push_back(std::abs(std::remainder(h.message.heading_true_rad * kDeg - want, 360.0)));
+    errors.push_back(std::abs(std::remainder(h.message.heading_true_rad * kDegPerRad - want, 360.0)));
     if ((h.message.declination_sources & 2) != 0) ++declination_from_gps;
   }
   ASSERT_GT(errors.size(), static_cast<std::size_t>((kSeconds - kCompareFromS) * 50));

@@ -2,7 +2,6 @@
 // beside a recording on the monotonic time axis, the same GPS port held by another program
 // first, and a CAN source on a host without CAN.
 #include <gtest/gtest.h>
-
 #include <sys/stat.h>
 
 #include <cmath>
@@ -13,10 +12,11 @@
 #include <sstream>
 
 #include "daemon_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "lcm_collector.hpp"
-#include "status_lookup.hpp"
 #include "port_holder.hpp"
 #include "pty_fixture.hpp"
+#include "status_lookup.hpp"
 #include "test_data.hpp"
 
 namespace headingd::daemon {
@@ -31,7 +31,7 @@ using test::findSource;
 using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 
 // mt3339.log: a MediaTek receiver in Oregon (44.07 N, 121.31 W), 30 one-second epochs with
 // RMC and GGA, 2015-04-13.
@@ -88,9 +88,9 @@ TEST(DaemonLiveSources, SerialGpsOnAPtyFeedsGpsMessagesAndTheWmmDeclination) {
   const auto& h = heading.back().message;
   EXPECT_EQ(h.validity, std::int8_t{1});
   EXPECT_NE(h.declination_source.find("wmm"), std::string::npos) << h.declination_source;
-  EXPECT_NEAR(h.declination_rad * kDeg, 15.0, 1.5);
-  EXPECT_NEAR(std::remainder((h.heading_true_rad - h.heading_mag_rad + h.mount_yaw_rad - h.declination_rad) * kDeg,
-                             360.0),
+  EXPECT_NEAR(h.declination_rad * kDegPerRad, 15.0, 1.5);
+  EXPECT_NEAR(std::remainder(
+                  (h.heading_true_rad - h.heading_mag_rad + h.mount_yaw_rad - h.declination_rad) * kDegPerRad, 360.0),
               0.0, 1e-9);
 }
 

@@ -1,24 +1,25 @@
 // [nmea_out] end to end: the headingd binary on the demo capture (file sources: THS mode S),
 // its TCP server on loopback in a private network namespace (in-private-net.sh), real TCP
 // clients, a real gpsd and gpspipe, and a real LCM subscriber to compare with HEADING.
-#include <gtest/gtest.h>
-
 #include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <mutex>
-#include <netinet/in.h>
 #include <numbers>
 #include <string>
-#include <sys/socket.h>
 #include <thread>
-#include <unistd.h>
 #include <vector>
 
 #include "daemon_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/nmea/checksum.hpp"
 #include "headingd/nmea/framer.hpp"
 #include "headingd/nmea/sentences.hpp"
@@ -35,7 +36,7 @@ using test::TempDir;
 using test::waitUntil;
 
 constexpr int kNmeaPort = 10110;
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 
 double steadyNow() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
@@ -188,7 +189,7 @@ bool matchesHeading(const std::vector<test::Received<headingd::heading_t>>& head
   for (const auto& h : heading) {
     if (h.message.validity != headingd::heading_t::VALIDITY_FRESH) continue;
     if (std::fabs(h.receive_s - when_s) > window_s) continue;
-    if (circularDiff(h.message.heading_true_rad * kDeg, deg) <= tolerance_deg) return true;
+    if (circularDiff(h.message.heading_true_rad * kDegPerRad, deg) <= tolerance_deg) return true;
   }
   return false;
 }

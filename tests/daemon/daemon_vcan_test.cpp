@@ -5,14 +5,15 @@
 // decoded samples against the recording, and the attitude against the offline replay of the
 // samples the daemon received.
 #include <gtest/gtest.h>
+#include <net/if.h>
 
 #include <cmath>
 #include <map>
-#include <net/if.h>
 #include <numbers>
 #include <sstream>
 
 #include "daemon_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "lcm_collector.hpp"
 #include "vcan_test_support.hpp"
@@ -24,7 +25,7 @@ using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::LcmCollector;
 
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 constexpr int kRows = 2857;  // the first 10 s of BROAD trial 05
 
 using test::counter;
@@ -124,7 +125,7 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
     if (it == index_of_sample.end()) continue;
     const double want = replay_yaw_deg.at(it->second);
     if (!std::isfinite(want)) continue;
-    max_yaw_diff = std::max(max_yaw_diff, std::abs(std::remainder(a.message.yaw_rad * kDeg - want, 360.0)));
+    max_yaw_diff = std::max(max_yaw_diff, std::abs(std::remainder(a.message.yaw_rad * kDegPerRad - want, 360.0)));
     ++compared;
   }
   const double csv_seconds = rows.column("t").back() - rows.column("t").front();

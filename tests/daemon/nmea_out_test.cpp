@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "daemon_test_support.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/nmea_out_sentences.hpp"
 #include "headingd/nmea/framer.hpp"
@@ -114,9 +115,9 @@ core::HeadingOutput estimate(double true_deg, unsigned declination_sources, bool
   h.attitude.valid = true;
   h.attitude.mag_disturbed = disturbed;
   h.attitude.mag_used = mag_used;
-  h.heading_true_rad = true_deg * std::numbers::pi / 180.0;
-  h.declination_rad = 3.0 * std::numbers::pi / 180.0;
-  h.mount_yaw_rad = 1.0 * std::numbers::pi / 180.0;
+  h.heading_true_rad = true_deg * core::kRadPerDeg;
+  h.declination_rad = 3.0 * core::kRadPerDeg;
+  h.mount_yaw_rad = 1.0 * core::kRadPerDeg;
   h.heading_mag_rad = h.heading_true_rad + h.mount_yaw_rad - h.declination_rad;
   h.declination_sources = declination_sources;
   return h;

@@ -16,7 +16,7 @@
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/input_file.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 
 using namespace headingd;
 

@@ -66,11 +66,12 @@ TEST(AccelClipping, ARunningPhoneThatClipsIsFoundAndKeepsItsTilt) {
       const double found = static_cast<double>(flagged_at_rail) / static_cast<double>(at_rail);
       const study::RunScore score_with = study::score(r, with.estimates);
       const study::RunScore score_without = study::score(r, without.estimates);
-      std::printf("%s seed %llu (±2 g): %zu rows at the limit after 20 s, %.1f %% flagged; inclination (plain / "
-                  "aligned) %.2f / %.2f deg ignoring clipping, %.2f / %.2f deg with it\n",
-                  scenario.c_str(), static_cast<unsigned long long>(seed), at_rail, 100.0 * found,
-                  score_without.rmse.inclination_rad / kDeg, score_without.aligned_rmse.inclination_rad / kDeg,
-                  score_with.rmse.inclination_rad / kDeg, score_with.aligned_rmse.inclination_rad / kDeg);
+      std::printf(
+          "%s seed %llu (±2 g): %zu rows at the limit after 20 s, %.1f %% flagged; inclination (plain / "
+          "aligned) %.2f / %.2f deg ignoring clipping, %.2f / %.2f deg with it\n",
+          scenario.c_str(), static_cast<unsigned long long>(seed), at_rail, 100.0 * found,
+          score_without.rmse.inclination_rad / kRadPerDeg, score_without.aligned_rmse.inclination_rad / kRadPerDeg,
+          score_with.rmse.inclination_rad / kRadPerDeg, score_with.aligned_rmse.inclination_rad / kRadPerDeg);
       EXPECT_GT(at_rail, 500u) << scenario << " seed " << seed;
       EXPECT_GT(found, 0.95) << scenario << " seed " << seed;
       // Never worse than ignoring it by more than a tenth of a degree (where the clipped
@@ -79,7 +80,7 @@ TEST(AccelClipping, ARunningPhoneThatClipsIsFoundAndKeepsItsTilt) {
       for (const auto& [with_rad, without_rad] :
            {std::pair{score_with.rmse.inclination_rad, score_without.rmse.inclination_rad},
             std::pair{score_with.aligned_rmse.inclination_rad, score_without.aligned_rmse.inclination_rad}}) {
-        EXPECT_LT(with_rad, without_rad + 0.1 * kDeg) << scenario << " seed " << seed;
+        EXPECT_LT(with_rad, without_rad + 0.1 * kRadPerDeg) << scenario << " seed " << seed;
         sum_with += with_rad;
         sum_without += without_rad;
       }
@@ -108,8 +109,8 @@ TEST(AccelClipping, AShakenPhoneThatClipsLeavesItsClippedDirectionToTheGyro) {
     const ClipRun with = runWith(r, core::EstimatorParams{});
     if (with.clipped_counter < 1000) continue;  // this seed's phone is not shaken past its rail
     ++clipping_runs;
-    const double with_deg = study::score(r, with.estimates).rmse.inclination_rad / kDeg;
-    const double weighted_deg = study::score(r, runWith(r, running_weight).estimates).rmse.inclination_rad / kDeg;
+    const double with_deg = study::score(r, with.estimates).rmse.inclination_rad / kRadPerDeg;
+    const double weighted_deg = study::score(r, runWith(r, running_weight).estimates).rmse.inclination_rad / kRadPerDeg;
     std::printf("shake-any phone seed %llu: %llu clipped samples; plain inclination %.2f deg (%.2f deg with the "
                 "running weight)\n",
                 static_cast<unsigned long long>(seed), static_cast<unsigned long long>(with.clipped_counter), with_deg,

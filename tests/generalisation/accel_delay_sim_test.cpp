@@ -57,11 +57,11 @@ TEST(AccelDelay, LearnedAndUsedWhereTheBodyStandsAndTheSensorTurns) {
       const double truth_s = kAccelLagS + 0.005;
       std::printf("slow-rotation %s seed %llu: delay %.1f ms, learned %.1f ms, %s; inclination %.3f -> %.3f deg\n",
                   sim::imuGradeName(grade), static_cast<unsigned long long>(seed), 1e3 * truth_s,
-                  1e3 * learned.candidate_s, learned.used ? "used" : "not used", fixed.inclination_rmse_rad / kDeg,
-                  learned.inclination_rmse_rad / kDeg);
+                  1e3 * learned.candidate_s, learned.used ? "used" : "not used",
+                  fixed.inclination_rmse_rad / kRadPerDeg, learned.inclination_rmse_rad / kRadPerDeg);
       EXPECT_NEAR(learned.candidate_s, truth_s, 0.005) << sim::imuGradeName(grade) << " seed " << seed;
       EXPECT_TRUE(learned.used) << sim::imuGradeName(grade) << " seed " << seed;
-      EXPECT_LE(learned.inclination_rmse_rad, fixed.inclination_rmse_rad + 0.005 * kDeg)
+      EXPECT_LE(learned.inclination_rmse_rad, fixed.inclination_rmse_rad + 0.005 * kRadPerDeg)
           << sim::imuGradeName(grade) << " seed " << seed;
       sum_with += learned.inclination_rmse_rad;
       sum_without += fixed.inclination_rmse_rad;

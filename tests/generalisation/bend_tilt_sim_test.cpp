@@ -45,9 +45,9 @@ TEST(BendTilt, RunningRoundCirclesTheTiltHoldsBetter) {
           scenario);
       const Inclinations i = inclinations(r);
       std::printf("%s %s seed %llu: inclination %.2f deg with the bend average, %.2f without\n", scenario.c_str(),
-                  sim::imuGradeName(grade), static_cast<unsigned long long>(seed), i.with_rad / kDeg,
-                  i.without_rad / kDeg);
-      EXPECT_LT(i.with_rad, i.without_rad + 0.1 * kDeg) << sim::imuGradeName(grade) << " seed " << seed;
+                  sim::imuGradeName(grade), static_cast<unsigned long long>(seed), i.with_rad / kRadPerDeg,
+                  i.without_rad / kRadPerDeg);
+      EXPECT_LT(i.with_rad, i.without_rad + 0.1 * kRadPerDeg) << sim::imuGradeName(grade) << " seed " << seed;
       sum_with += i.with_rad;
       sum_without += i.without_rad;
     }
@@ -61,10 +61,10 @@ TEST(BendTilt, WithoutABendItCostsAtMostThreeTenthsOfADegree) {
       for (std::uint64_t seed = 1; seed <= 2; ++seed) {
         const Inclinations i = inclinations(simulated(scenario, seed, grade));
         std::printf("%s %s seed %llu: inclination %.2f deg with the bend average, %.2f without\n", scenario.c_str(),
-                    sim::imuGradeName(grade), static_cast<unsigned long long>(seed), i.with_rad / kDeg,
-                    i.without_rad / kDeg);
-        EXPECT_LT(i.with_rad, i.without_rad + 0.3 * kDeg) << scenario << " " << sim::imuGradeName(grade) << " seed "
-                                                          << seed;
+                    sim::imuGradeName(grade), static_cast<unsigned long long>(seed), i.with_rad / kRadPerDeg,
+                    i.without_rad / kRadPerDeg);
+        EXPECT_LT(i.with_rad, i.without_rad + 0.3 * kRadPerDeg)
+            << scenario << " " << sim::imuGradeName(grade) << " seed " << seed;
       }
     }
   }

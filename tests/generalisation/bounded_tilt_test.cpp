@@ -46,10 +46,10 @@ void expectBounded(const std::vector<std::function<study::Recording()>>& makers,
   b.join();
   double worst = 0.0, worst_after = 0.0, worst_settle = 0.0;
   for (const auto& [name, e] : results) {
-    EXPECT_LT(e.max_inclination_rad / kDeg, bounds.during_deg) << name << ": during the motion";
-    EXPECT_LT(e.max_inclination_after_rad / kDeg, bounds.after_deg) << name << ": from 5 s after it";
-    worst = std::max(worst, e.max_inclination_rad / kDeg);
-    worst_after = std::max(worst_after, e.max_inclination_after_rad / kDeg);
+    EXPECT_LT(e.max_inclination_rad / kRadPerDeg, bounds.during_deg) << name << ": during the motion";
+    EXPECT_LT(e.max_inclination_after_rad / kRadPerDeg, bounds.after_deg) << name << ": from 5 s after it";
+    worst = std::max(worst, e.max_inclination_rad / kRadPerDeg);
+    worst_after = std::max(worst_after, e.max_inclination_after_rad / kRadPerDeg);
     worst_settle = std::max(worst_settle, e.settle_time_s);
   }
   std::printf("%s: %zu runs, worst inclination error %.2f deg during the motion (bound %.1f), %.2f deg from 5 s "
@@ -125,7 +125,7 @@ TEST(BoundedTilt, ConvergesFromAnyInitialAttitudeErrorAtRest) {
   double worst_s = 0.0;
   for (const auto grade : {sim::ImuGrade::kMems, sim::ImuGrade::kConsumer}) {
     const bool current_part = grade == sim::ImuGrade::kMems;
-    const double settled_rad = (current_part ? 1.0 : 2.0) * kDeg;
+    const double settled_rad = (current_part ? 1.0 : 2.0) * kRadPerDeg;
     const double kStatedS = current_part ? 8.0 : 10.0;
     double grade_worst_s = 0.0;
     for (const double error_deg : {10.0, 45.0, 90.0, 135.0, 170.0, 179.0, 180.0}) {
@@ -137,7 +137,7 @@ TEST(BoundedTilt, ConvergesFromAnyInitialAttitudeErrorAtRest) {
         still.still_before_s = 30.0;
         still.shake_s = still.still_after_s = 0.0;
         study::Recording r = simulated(sim::shakeScenario(still, "still", "still"), seed, grade);
-        study::startOffBy(r, error_deg * kDeg, seed);
+        study::startOffBy(r, error_deg * kRadPerDeg, seed);
         const auto errors = study::perSampleErrors(r, study::runEstimator(r, core::EstimatorParams{}));
         double last_off_s = 0.0;  // the last time the error was at the bound or more
         for (std::size_t i = 0; i < r.size(); ++i) {
@@ -147,8 +147,9 @@ TEST(BoundedTilt, ConvergesFromAnyInitialAttitudeErrorAtRest) {
         grade_worst_s = std::max(grade_worst_s, last_off_s);
       }
     }
-    std::printf("%s: from up to 180 deg off, lying still: below %.0f deg for good after at most %.1f s (stated %.0f s)\n",
-                sim::imuGradeName(grade), settled_rad / kDeg, grade_worst_s, kStatedS);
+    std::printf(
+        "%s: from up to 180 deg off, lying still: below %.0f deg for good after at most %.1f s (stated %.0f s)\n",
+        sim::imuGradeName(grade), settled_rad / kRadPerDeg, grade_worst_s, kStatedS);
     worst_s = std::max(worst_s, grade_worst_s);
   }
 }

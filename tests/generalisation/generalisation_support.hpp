@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/sim/simulation.hpp"
 #include "headingd/study/recording.hpp"
@@ -16,7 +17,7 @@
 
 namespace headingd::generalisation_test {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using core::kRadPerDeg;
 
 inline const core::WorldMagneticModel& wmm() {
   static const core::WorldMagneticModel model = [] {
@@ -43,7 +44,7 @@ inline study::Recording simulated(const sim::Scenario& scenario, std::uint64_t s
 // The motion episode of a run with the default estimator: its worst inclination error and
 // the worst from 5 s after the motion's end, to check that it returns below 1 deg within 5 s.
 inline study::EpisodeScore episode(const study::Recording& r) {
-  return study::scoreEpisode(r, study::runEstimator(r, core::EstimatorParams{}), 5.0, 1.0 * kDeg);
+  return study::scoreEpisode(r, study::runEstimator(r, core::EstimatorParams{}), 5.0, 1.0 * kRadPerDeg);
 }
 
 // BROAD's trials: ../shared/data/broad's when it is beside the checkout, else the

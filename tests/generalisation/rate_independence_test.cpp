@@ -18,9 +18,9 @@ struct Means {
   double total = 0.0, inclination = 0.0, aligned = 0.0;
   int n = 0;
   void add(const study::RunScore& s) {
-    total += s.rmse.total_rad / kDeg;
-    inclination += s.rmse.inclination_rad / kDeg;
-    aligned += s.aligned_rmse.total_rad / kDeg;
+    total += s.rmse.total_rad / kRadPerDeg;
+    inclination += s.rmse.inclination_rad / kRadPerDeg;
+    aligned += s.aligned_rmse.total_rad / kRadPerDeg;
     ++n;
   }
   Means mean() const { return {total / n, inclination / n, aligned / n, n}; }
@@ -52,13 +52,14 @@ TEST(RateIndependence, BroadResampledTo100And50HzStaysWithinTenPercentOfItsNativ
     const auto scores = jobs[t].get();
     for (std::size_t r = 0; r < rates.size(); ++r) sums[r].add(scores[r]);
     std::printf("%-45s  %5.2f %5.2f %5.2f                %5.2f %5.2f %5.2f\n",
-                std::filesystem::path(trials[t]).filename().string().c_str(), scores[0].rmse.total_rad / kDeg,
-                scores[1].rmse.total_rad / kDeg, scores[2].rmse.total_rad / kDeg,
-                scores[0].rmse.inclination_rad / kDeg, scores[1].rmse.inclination_rad / kDeg,
-                scores[2].rmse.inclination_rad / kDeg);
+                std::filesystem::path(trials[t]).filename().string().c_str(), scores[0].rmse.total_rad / kRadPerDeg,
+                scores[1].rmse.total_rad / kRadPerDeg, scores[2].rmse.total_rad / kRadPerDeg,
+                scores[0].rmse.inclination_rad / kRadPerDeg, scores[1].rmse.inclination_rad / kRadPerDeg,
+                scores[2].rmse.inclination_rad / kRadPerDeg);
     // Tilt, trial by trial: within 15 % (or 0.05 deg, the figures' own spread).
     for (std::size_t r = 1; r < rates.size(); ++r) {
-      const double native = scores[0].rmse.inclination_rad / kDeg, resampled = scores[r].rmse.inclination_rad / kDeg;
+      const double native = scores[0].rmse.inclination_rad / kRadPerDeg,
+                   resampled = scores[r].rmse.inclination_rad / kRadPerDeg;
       EXPECT_LE(std::abs(resampled - native), std::max(0.15 * native, 0.05)) << trials[t] << " at " << rates[r] << " Hz";
     }
   }
@@ -92,7 +93,7 @@ TEST(RateIndependence, SimulatedMotionsGiveTheSameErrorsAt50To400Hz) {
         jobs[{s, r}].push_back(std::async(std::launch::deferred, [&, s, r, seed] {
           const study::Recording rec = simulated(scenarios[s], seed, sim::ImuGrade::kMems, rates[r]);
           const auto est = study::runEstimator(rec, core::EstimatorParams{});
-          return Run{study::score(rec, est), study::scoreEpisode(rec, est, 5.0, kDeg)};
+          return Run{study::score(rec, est), study::scoreEpisode(rec, est, 5.0, kRadPerDeg)};
         }));
       }
     }
@@ -124,8 +125,8 @@ TEST(RateIndependence, SimulatedMotionsGiveTheSameErrorsAt50To400Hz) {
       for (const Run& run : runs[{s, r}]) {
         m.add(run.score);
         pooled[r].add(run.score);
-        worst = std::max(worst, run.episode.max_inclination_rad / kDeg);
-        worst_after = std::max(worst_after, run.episode.max_inclination_after_rad / kDeg);
+        worst = std::max(worst, run.episode.max_inclination_rad / kRadPerDeg);
+        worst_after = std::max(worst_after, run.episode.max_inclination_after_rad / kRadPerDeg);
       }
       const Means mean = m.mean();
       std::printf("%-14s %6.1f  %5.2f %5.2f %5.2f                                %5.2f\n", scenarios[s].c_str(), rates[r],

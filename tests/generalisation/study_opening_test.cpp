@@ -5,12 +5,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/study/scoring.hpp"
 
 namespace headingd {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kRadPerDeg;
 
 TEST(StudyScore, TheOpeningsHeadingErrorIsScoredApartFromTheRest) {
   // 60 s at 100 Hz, the sensor turning slowly about the vertical and rolling a little; the
@@ -29,13 +30,13 @@ TEST(StudyScore, TheOpeningsHeadingErrorIsScoredApartFromTheRest) {
   }
   std::vector<core::Quat> estimates;
   for (int i = 0; i < 6000; ++i) {
-    const double heading_error = i < 1000 ? 10.0 * kDeg : 0.0;
+    const double heading_error = i < 1000 ? 10.0 * kRadPerDeg : 0.0;
     estimates.push_back(core::Quat(Eigen::AngleAxisd(heading_error, core::Vec3::UnitZ())) * r.truth_nb[i]);
   }
   const study::RunScore s = study::score(r, estimates, 25.0);
   // The fit takes out about a sixth of the 10° (its mean); what is left is in the first 10 s.
-  EXPECT_GT(s.aligned_opening_rmse.heading_rad, 5.0 * kDeg);
-  EXPECT_LT(s.aligned_after_opening_rmse.heading_rad, 2.5 * kDeg);
+  EXPECT_GT(s.aligned_opening_rmse.heading_rad, 5.0 * kRadPerDeg);
+  EXPECT_LT(s.aligned_after_opening_rmse.heading_rad, 2.5 * kRadPerDeg);
   // The two parts are the whole run's samples: 2500 in the opening, 3500 after.
   const auto squares = [](double rmse, double n) { return rmse * rmse * n; };
   EXPECT_NEAR(squares(s.aligned_opening_rmse.heading_rad, 2500) + squares(s.aligned_after_opening_rmse.heading_rad, 3500),

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/estimator.hpp"
 #include "headingd/core/heading_definition.hpp"
 #include "sim_test_support.hpp"
@@ -17,9 +18,9 @@
 namespace headingd {
 namespace {
 
+using core::kRadPerDeg;
 using sim_test::config;
 using sim_test::run;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 struct Mount {
   const char* name;
@@ -73,7 +74,7 @@ Figures runScenario(const std::string& scenario, const Mount& m, std::uint64_t s
       ++f.lying;
       f.lying_redefined += o.heading_redefined;
       // The true head (body -z) heading from magnetic north: what ψ_rd should be.
-      const double truth = core::headingOfAxis(s.q_nb, core::kDocumentedHeadAxis) - r.declination_deg * kDeg;
+      const double truth = core::headingOfAxis(s.q_nb, core::kDocumentedHeadAxis) - r.declination_deg * kRadPerDeg;
       const double err = std::abs(wrap(o.heading_rad - truth));
       f.lying_heading_sq += err * err;
       f.worst_lying_heading_rad = std::max(f.worst_lying_heading_rad, err);
@@ -85,18 +86,19 @@ Figures runScenario(const std::string& scenario, const Mount& m, std::uint64_t s
                settled && s.t_s >= learned_by_s) {
       ++f.upright;
       f.upright_redefined += o.heading_redefined;
-      const double truth = core::headingOf(s.q_nb * r.q_bs) - r.declination_deg * kDeg;
+      const double truth = core::headingOf(s.q_nb * r.q_bs) - r.declination_deg * kRadPerDeg;
       const double err = wrap(o.yaw_rad - truth);
       f.upright_heading_sq += err * err;
     }
   }
-  std::printf("%-12s %-45s seed %llu: lying %zu/%zu redefined, heading RMS %.2f max %.2f deg (axis alone %.2f); upright %zu/%zu "
-              "redefined, yaw RMS %.2f; before the axis is learned %zu/%zu redefined\n",
-              scenario.c_str(), m.name, static_cast<unsigned long long>(seed), f.lying_redefined, f.lying,
-              f.lying ? std::sqrt(f.lying_heading_sq / f.lying) / kDeg : 0.0, f.worst_lying_heading_rad / kDeg,
-              f.worst_axis_heading_rad / kDeg,
-              f.upright_redefined, f.upright, f.upright ? std::sqrt(f.upright_heading_sq / f.upright) / kDeg : 0.0,
-              f.unlearned_redefined, f.unlearned);
+  std::printf(
+      "%-12s %-45s seed %llu: lying %zu/%zu redefined, heading RMS %.2f max %.2f deg (axis alone %.2f); upright "
+      "%zu/%zu "
+      "redefined, yaw RMS %.2f; before the axis is learned %zu/%zu redefined\n",
+      scenario.c_str(), m.name, static_cast<unsigned long long>(seed), f.lying_redefined, f.lying,
+      f.lying ? std::sqrt(f.lying_heading_sq / f.lying) / kRadPerDeg : 0.0, f.worst_lying_heading_rad / kRadPerDeg,
+      f.worst_axis_heading_rad / kRadPerDeg, f.upright_redefined, f.upright,
+      f.upright ? std::sqrt(f.upright_heading_sq / f.upright) / kRadPerDeg : 0.0, f.unlearned_redefined, f.unlearned);
   return f;
 }
 
@@ -116,8 +118,8 @@ TEST(LyingDown, FollowsThePersonWhateverTheMounting) {
       // Lying, the published heading is that of the person's head. The learned axis is the
       // walking up direction, which leans ~4° forward from the body's -z in the simulated gait
       // (heading differences up to 6° with it); the consumer IMU's heading error adds to that.
-      EXPECT_LT(f.worst_axis_heading_rad, 7.0 * kDeg);
-      EXPECT_LT(std::sqrt(f.lying_heading_sq / f.lying), 8.0 * kDeg);
+      EXPECT_LT(f.worst_axis_heading_rad, 7.0 * kRadPerDeg);
+      EXPECT_LT(std::sqrt(f.lying_heading_sq / f.lying), 8.0 * kRadPerDeg);
       // Standing before the first walk (0-5 s) and the first strides the mounting is unknown:
       // no fixed sensor axis decides, so a flat sensor is not lying down there either.
       EXPECT_GT(f.unlearned, 500u);
@@ -143,7 +145,7 @@ TEST(LyingDown, TheSensorsFixedAxisTakesAFlatSensorForALyingPerson) {
   EXPECT_EQ(screen_up.upright_redefined, screen_up.upright);  // walking "lying down" all along
   const Figures pocket = runScenario("crawl", kMounts[2], 1, kCrawlLearnedByS, fixed);
   EXPECT_EQ(pocket.upright_redefined, pocket.upright);
-  EXPECT_GT(pocket.worst_axis_heading_rad, 60.0 * kDeg);  // lying: the heading of the wrong axis
+  EXPECT_GT(pocket.worst_axis_heading_rad, 60.0 * kRadPerDeg);  // lying: the heading of the wrong axis
 }
 
 }  // namespace

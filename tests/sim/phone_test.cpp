@@ -13,6 +13,7 @@
 #include <set>
 #include <string>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/imu_model.hpp"
 #include "headingd/sim/phone_imu.hpp"
 #include "headingd/sim/phone_scenarios.hpp"
@@ -21,14 +22,14 @@
 namespace headingd::sim_test {
 namespace {
 
+using core::kRadPerDeg;
 using core::Quat;
 using core::Vec3;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 bool within(double x, const sim::DrawRange& r) { return x >= r.lo && x <= r.hi; }
 
 // Elevation of a sensor axis above the horizontal (NED: up is -z).
-double elevationDeg(const Quat& q_ns, const Vec3& axis) { return std::asin(-(q_ns * axis).z()) / kDeg; }
+double elevationDeg(const Quat& q_ns, const Vec3& axis) { return std::asin(-(q_ns * axis).z()) / kRadPerDeg; }
 
 TEST(PhoneGrade, DrawnValuesLieInTheirRangesAndSpanThem) {
   using R = sim::PhoneRanges;
@@ -61,7 +62,7 @@ TEST(PhoneGrade, DrawnValuesLieInTheirRangesAndSpanThem) {
   EXPECT_GT(highest_noise, 0.018);
   EXPECT_LT(lowest_lag, 0.021);
   EXPECT_GT(highest_lag, 0.039);
-  EXPECT_GT(largest_bias, 5.0 * kDeg);
+  EXPECT_GT(largest_bias, 5.0 * kRadPerDeg);
   // The accelerometer's full scale is one of the listed ones, each drawn about as often.
   ASSERT_EQ(full_scales.size(), std::size(R::kAccelFullScale_m_s2));
   for (const double fs : R::kAccelFullScale_m_s2) EXPECT_GT(full_scales[fs], 70) << fs;
@@ -336,7 +337,7 @@ TEST(PhoneCarry, PocketTurnsWithTheThighAndDrawsEveryPlacement) {
     }
     for (const double p2p : peakToPeakPerWindow(r, [](const sim::ImuRow& row) {
            // The thigh's angle: the phone's top against down, in the sagittal swing.
-           return std::acos(std::clamp(std::abs((row.q_ns * Vec3::UnitX()).z()), 0.0, 1.0)) / kDeg;
+           return std::acos(std::clamp(std::abs((row.q_ns * Vec3::UnitX()).z()), 0.0, 1.0)) / kRadPerDeg;
          })) {
       EXPECT_GT(p2p, 12.0) << "seed " << seed;
       EXPECT_LT(p2p, 50.0) << "seed " << seed;
@@ -385,7 +386,7 @@ TEST(PhoneScenarios, TheRoomsFieldVariesByAFewDegrees) {
     const double earth = std::atan2(r.field_ned_uT.front().y() - r.disturbance_ned_uT.front().y(),
                                     r.field_ned_uT.front().x() - r.disturbance_ned_uT.front().x());
     for (const Vec3& f : r.field_ned_uT) {
-      const double d = std::remainder(std::atan2(f.y(), f.x()) - earth, 2.0 * std::numbers::pi) / kDeg;
+      const double d = std::remainder(std::atan2(f.y(), f.x()) - earth, 2.0 * std::numbers::pi) / kRadPerDeg;
       sum += d, sum2 += d * d, ++n;
       lo = std::min(lo, d), hi = std::max(hi, d);
     }

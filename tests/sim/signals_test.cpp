@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/sim/imu_model.hpp"
 #include "sim_test_support.hpp"
@@ -14,9 +15,9 @@
 namespace headingd::sim_test {
 namespace {
 
+using core::kRadPerDeg;
 using core::Quat;
 using core::Vec3;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 double angleBetween(const Quat& a, const Quat& b) { return a.angularDistance(b); }
 
@@ -72,7 +73,7 @@ TEST(Accel, LyingOnTheBackReadsGravityAlongBodyX) {
   const sim::ImuRow& row = r.imu[static_cast<std::size_t>(80.0 * r.config.imu_rate_hz)];
   ASSERT_EQ(r.trajectory.states[static_cast<std::size_t>(80.0 * r.config.imu_rate_hz)].activity,
             sim::Activity::kLyingBack);
-  EXPECT_NEAR(row.accel_m_s2.x(), sim::kGravity_m_s2 * std::sin(85.0 * kDeg), 0.05);
+  EXPECT_NEAR(row.accel_m_s2.x(), sim::kGravity_m_s2 * std::sin(85.0 * kRadPerDeg), 0.05);
 }
 
 TEST(Accel, WhileMovingItIsTheSecondDerivativeOfPosition) {
@@ -126,7 +127,7 @@ TEST(Mag, AnomalyTurnsTheFieldEastAboutDown) {
   EXPECT_NEAR(r.declination_deg, r.wmm.declination_deg + 2.5, 1e-12);
   for (std::size_t k = 0; k < r.imu.size(); k += 97) {
     const Vec3 m_ned = r.imu[k].q_ns * r.imu[k].mag_uT;
-    EXPECT_NEAR(std::atan2(m_ned.y(), m_ned.x()) / kDeg, r.declination_deg, 1e-7);
+    EXPECT_NEAR(std::atan2(m_ned.y(), m_ned.x()) / kRadPerDeg, r.declination_deg, 1e-7);
     EXPECT_NEAR(m_ned.norm(), r.wmm.f_nT / 1000.0, 1e-9);
     EXPECT_NEAR(m_ned.z(), r.wmm.z_nT / 1000.0, 1e-9);  // turning about down keeps the vertical part
   }
@@ -166,7 +167,7 @@ TEST(Mount, SensorIsTheBodyTurnedAboutBodyZ) {
   const sim::SimResult& mounted = run(c);
   c.mount_yaw_deg = 0.0;
   const sim::SimResult& plain = run(c);
-  const Quat q_bs(Eigen::AngleAxisd(30.0 * kDeg, Vec3::UnitZ()));
+  const Quat q_bs(Eigen::AngleAxisd(30.0 * kRadPerDeg, Vec3::UnitZ()));
   for (std::size_t k = 0; k < mounted.imu.size(); k += 11) {
     const sim::TruthState& s = mounted.trajectory.states[k];
     EXPECT_LT(angleBetween(mounted.imu[k].q_ns, s.q_nb * q_bs), 1e-12);
@@ -176,7 +177,7 @@ TEST(Mount, SensorIsTheBodyTurnedAboutBodyZ) {
     EXPECT_LT((mounted.imu[k].mag_uT - q_bs.conjugate() * plain.imu[k].mag_uT).norm(), 1e-9);
     // Upright, the sensor's heading is the body's plus the mount yaw (up to the small tilt).
     const double sensor_heading = core::headingOf(mounted.imu[k].q_ns);
-    EXPECT_NEAR(core::wrapAngle(sensor_heading - core::headingOf(s.q_nb)), 30.0 * kDeg, 0.5 * kDeg);
+    EXPECT_NEAR(core::wrapAngle(sensor_heading - core::headingOf(s.q_nb)), 30.0 * kRadPerDeg, 0.5 * kRadPerDeg);
   }
 }
 
@@ -194,7 +195,7 @@ TEST(Mount, PitchAndRollTurnTheSensorFurtherAsZyxEulerAngles) {
   // Without pitch and roll, the mount is the yaw turn alone, bit for bit.
   c.mount_pitch_deg = 0.0;
   c.mount_roll_deg = 0.0;
-  EXPECT_EQ(run(c).q_bs.coeffs(), core::headingRotation(30.0 * kDeg).coeffs());
+  EXPECT_EQ(run(c).q_bs.coeffs(), core::headingRotation(30.0 * kRadPerDeg).coeffs());
 }
 
 TEST(ImuErrors, ConsumerGradeAddsNoiseOfTheConfiguredSize) {
@@ -213,7 +214,7 @@ TEST(ImuErrors, ConsumerGradeAddsNoiseOfTheConfiguredSize) {
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(sigma(i), noisy.gyro.white_sigma(i), 0.1 * noisy.gyro.white_sigma(i));
     EXPECT_NEAR(mean(i), noisy.gyro.offset(i), 0.006);  // ±1°/s offset, plus bias drift and noise of the mean
-    EXPECT_LE(std::abs(noisy.gyro.offset(i)), 1.0 * kDeg);
+    EXPECT_LE(std::abs(noisy.gyro.offset(i)), 1.0 * kRadPerDeg);
   }
   EXPECT_NEAR(noisy.gyro.white_sigma.x(), 0.00413 * std::sqrt(100.0), 1e-12);  // MAGYQ Table 2 ARW
 }

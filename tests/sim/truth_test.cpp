@@ -5,13 +5,14 @@
 #include <cmath>
 #include <map>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/heading_definition.hpp"
 #include "sim_test_support.hpp"
 
 namespace headingd::sim_test {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kRadPerDeg;
 
 TEST(Scenarios, DurationsAndRowCounts) {
   const std::map<std::string, double> expected = {
@@ -54,7 +55,7 @@ TEST(Scenarios, ThesisDeclinationWalksNorthEastSouthWest) {
         se += s.velocity_ned_mps.y();
       }
     }
-    EXPECT_NEAR(core::wrapAngle(std::atan2(se, sn) - leg * 90.0 * kDeg), 0.0, 2.0 * kDeg) << "leg " << leg;
+    EXPECT_NEAR(core::wrapAngle(std::atan2(se, sn) - leg * 90.0 * kRadPerDeg), 0.0, 2.0 * kRadPerDeg) << "leg " << leg;
   }
 }
 
@@ -107,7 +108,7 @@ TEST(TruthCsv, ColumnsAreConsistent) {
     // The body quaternion's heading is the heading column (definition 2.5.1).
     const core::Quat q(std::stod(f[col["body_qw"]]), std::stod(f[col["body_qx"]]), std::stod(f[col["body_qy"]]),
                        std::stod(f[col["body_qz"]]));
-    EXPECT_NEAR(std::remainder(core::headingOf(q.normalized()) / kDeg - heading_true, 360.0), 0.0, 1e-5);
+    EXPECT_NEAR(std::remainder(core::headingOf(q.normalized()) / kRadPerDeg - heading_true, 360.0), 0.0, 1e-5);
   }
   // The start is the configured place.
   const auto first = splitFields(lines[1]);
@@ -123,7 +124,7 @@ TEST(TruthCsv, HeadingIsTheBodysNotTheSensors) {
   // Walking north (t = 30 s): the body heads ~0°, the sensor ~45°.
   const auto f = splitFields(lines[1 + 30 * 20]);
   EXPECT_LT(std::abs(std::remainder(std::stod(f[1]), 360.0)), 6.0);
-  EXPECT_NEAR(std::remainder(core::headingOf(r.imu[30 * 20].q_ns) / kDeg, 360.0), 45.0, 6.0);
+  EXPECT_NEAR(std::remainder(core::headingOf(r.imu[30 * 20].q_ns) / kRadPerDeg, 360.0), 45.0, 6.0);
 }
 
 TEST(ImuCsv, BroadLayoutWithTheTrueSensorAttitude) {

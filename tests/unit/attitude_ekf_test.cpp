@@ -8,7 +8,7 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 using test::Random;
 
 constexpr double kG = 9.81;
@@ -85,7 +85,7 @@ TEST(AttitudeEkf, GravityUpdateMovesTiltTowardsTruthAndShrinksP) {
     const Quat truth = test::fromYawPitchRoll(rng.uniform(-3.0, 3.0), rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2));
     // A wrong tilt: truth rotated by up to 25° about a random horizontal axis.
     const Vec3 axis(rng.uniform(-1, 1), rng.uniform(-1, 1), 0.0);
-    const Quat wrong = Quat(Eigen::AngleAxisd(rng.uniform(5.0, 25.0) * kDeg, axis.normalized())) * truth;
+    const Quat wrong = Quat(Eigen::AngleAxisd(rng.uniform(5.0, 25.0) * kRadPerDeg, axis.normalized())) * truth;
 
     AttitudeEkf ekf;
     ekf.setAttitude(wrong);
@@ -153,7 +153,7 @@ TEST(AttitudeEkf, AMeasurementShortAlongItsUncertainDirectionBarelyTilts) {
   // A low-pass 3 m/s² short along a sensor axis 30° off vertical (the accelerometer clipped
   // there) pulls the tilt by degrees; told that direction is uncertain by 16 m/s², the update
   // keeps to what the other two directions say, which is the truth.
-  const Quat truth = test::fromYawPitchRoll(0.7, 30.0 * kDeg, 0.0);
+  const Quat truth = test::fromYawPitchRoll(0.7, 30.0 * kRadPerDeg, 0.0);
   const Vec3 clipped_axis = Vec3::UnitX();
   const Vec3 short_reading = gravityReading(truth) - 3.0 * clipped_axis;
   const auto tilt_after = [&](double extra_variance) {
@@ -168,22 +168,22 @@ TEST(AttitudeEkf, AMeasurementShortAlongItsUncertainDirectionBarelyTilts) {
   };
   const double plain = tilt_after(0.0);
   const double told = tilt_after(16.0 * 16.0);
-  EXPECT_GT(plain, 5.0 * kDeg);
+  EXPECT_GT(plain, 5.0 * kRadPerDeg);
   EXPECT_LT(told, 0.1 * plain);
 }
 
 TEST(AttitudeEkf, RepeatedUpdatesAtRestConvergeToRollAndPitch) {
-  const Quat truth = test::fromYawPitchRoll(2.0, 20.0 * kDeg, -35.0 * kDeg);
+  const Quat truth = test::fromYawPitchRoll(2.0, 20.0 * kRadPerDeg, -35.0 * kRadPerDeg);
   AttitudeEkf ekf;
-  ekf.setAttitude(test::fromYawPitchRoll(2.0, -10.0 * kDeg, 10.0 * kDeg));
+  ekf.setAttitude(test::fromYawPitchRoll(2.0, -10.0 * kRadPerDeg, 10.0 * kRadPerDeg));
   ekf.setCovariance(tangentCovariance(ekf.state(), 0.1));
   for (int i = 0; i < 1000; ++i) {
     ekf.predict(Vec3::Zero(), 0.01, 0.004);
     ekf.updateGravity(gravityReading(truth), 0.5, kG);
   }
   const EulerAngles e = eulerZyx(ekf.attitude());
-  EXPECT_NEAR(e.roll_rad, -35.0 * kDeg, 0.1 * kDeg);
-  EXPECT_NEAR(e.pitch_rad, 20.0 * kDeg, 0.1 * kDeg);
+  EXPECT_NEAR(e.roll_rad, -35.0 * kRadPerDeg, 0.1 * kRadPerDeg);
+  EXPECT_NEAR(e.pitch_rad, 20.0 * kRadPerDeg, 0.1 * kRadPerDeg);
 }
 
 TEST(AttitudeEkf, ConsistentGravityLeavesHeadingAlone) {
@@ -200,8 +200,8 @@ TEST(AttitudeEkf, ConsistentGravityLeavesHeadingAlone) {
       ekf.predict(Vec3::Zero(), 0.01, 0.004);
       ekf.updateGravity(gravityReading(truth) + rng.gaussian(0.05), 0.5, kG);
     }
-    EXPECT_LT(test::angleDifference(eulerZyx(ekf.attitude()).yaw_rad, yaw), 0.2 * kDeg) << "trial " << trial;
-    EXPECT_LT(test::angleBetween(ekf.attitude(), truth), 0.5 * kDeg) << "trial " << trial;
+    EXPECT_LT(test::angleDifference(eulerZyx(ekf.attitude()).yaw_rad, yaw), 0.2 * kRadPerDeg) << "trial " << trial;
+    EXPECT_LT(test::angleBetween(ekf.attitude(), truth), 0.5 * kRadPerDeg) << "trial " << trial;
   }
 }
 

@@ -11,8 +11,8 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
 using test::kPi;
+using test::kRadPerDeg;
 
 constexpr double kDt = 0.01;  // 100 Hz
 
@@ -27,7 +27,7 @@ double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b)
 // at the step frequency and turning slowly, so that every heading is seen.
 Quat walkingBody(double t) {
   const double step = 2.0 * kPi * 1.9 * t;
-  return test::fromYawPitchRoll(0.3 * t, 3.0 * kDeg * std::sin(step), 3.0 * kDeg * std::sin(0.5 * step));
+  return test::fromYawPitchRoll(0.3 * t, 3.0 * kRadPerDeg * std::sin(step), 3.0 * kRadPerDeg * std::sin(0.5 * step));
 }
 
 // Feeds `seconds` of walking with the sensor mounted q_bs (sensor to body).
@@ -54,7 +54,7 @@ TEST(BodyUpAxis, StartsAtTheDefaultAndLearnsAnyMountingFromWalking) {
     ASSERT_TRUE(up.learned());
     // The body's -z (its head) in sensor axes: the sway averages out.
     const Vec3 head_s = q_bs.conjugate() * kDocumentedHeadAxis;
-    EXPECT_LT(angleBetween(up.axis(), head_s), 0.5 * kDeg) << q_bs.coeffs().transpose();
+    EXPECT_LT(angleBetween(up.axis(), head_s), 0.5 * kRadPerDeg) << q_bs.coeffs().transpose();
     EXPECT_NEAR(up.axis().norm(), 1.0, 1e-12);
   }
 }
@@ -68,7 +68,7 @@ TEST(BodyUpAxis, ReplacesTheDefaultOnlyAfterTheMinimumWalkingTime) {
   walk(up, flat_z_up, 0.2, 4.9);
   EXPECT_TRUE(up.learned());
   // The running-mean start: already right after a few seconds, not pulled towards the default.
-  EXPECT_LT(angleBetween(up.axis(), Vec3::UnitZ()), 2.0 * kDeg);
+  EXPECT_LT(angleBetween(up.axis(), Vec3::UnitZ()), 2.0 * kRadPerDeg);
 }
 
 TEST(BodyUpAxis, HeldWhileThePersonDoesNotWalk) {
@@ -88,7 +88,7 @@ TEST(BodyUpAxis, HeldWhileThePersonDoesNotWalk) {
 TEST(BodyUpAxis, FollowsASensorSlippingWithinTheUprightConeWithItsTimeConstant) {
   // A sensor that slips 30° in its mount (h = cos 30° = 0.87: still upright by the old axis).
   const Quat before = Quat::Identity();
-  const Quat after(Eigen::AngleAxisd(30.0 * kDeg, Vec3::UnitY()));
+  const Quat after(Eigen::AngleAxisd(30.0 * kRadPerDeg, Vec3::UnitY()));
   const double tau = 30.0;
   BodyUpAxis up(params(tau));
   walk(up, before, 120.0);
@@ -98,9 +98,9 @@ TEST(BodyUpAxis, FollowsASensorSlippingWithinTheUprightConeWithItsTimeConstant) 
   const Vec3 old_s = before.conjugate() * kDocumentedHeadAxis;
   const Vec3 new_s = after.conjugate() * kDocumentedHeadAxis;
   const Vec3 chord = std::exp(-1.0) * old_s + (1.0 - std::exp(-1.0)) * new_s;
-  EXPECT_NEAR(angleBetween(up.axis(), old_s), angleBetween(chord, old_s), 1.0 * kDeg);
+  EXPECT_NEAR(angleBetween(up.axis(), old_s), angleBetween(chord, old_s), 1.0 * kRadPerDeg);
   walk(up, after, 5.0 * tau, 120.0 + tau);
-  EXPECT_LT(angleBetween(up.axis(), new_s), 1.0 * kDeg);
+  EXPECT_LT(angleBetween(up.axis(), new_s), 1.0 * kRadPerDeg);
 }
 
 TEST(BodyUpAxis, CrawlingDoesNotTiltIt) {
@@ -109,10 +109,10 @@ TEST(BodyUpAxis, CrawlingDoesNotTiltIt) {
   BodyUpAxis up(params());
   walk(up, Quat::Identity(), 30.0);
   const Vec3 learned = up.axis();
-  const Quat crawling_pitch(Eigen::AngleAxisd(-80.0 * kDeg, Vec3::UnitY()));
+  const Quat crawling_pitch(Eigen::AngleAxisd(-80.0 * kRadPerDeg, Vec3::UnitY()));
   for (double t = 30.0; t < 80.0; t += kDt) up.update(walkingBody(t) * crawling_pitch, true, kDt);
   EXPECT_EQ(up.axis(), learned);
-  EXPECT_LT(angleBetween(up.axis(), kDocumentedHeadAxis), 0.5 * kDeg);
+  EXPECT_LT(angleBetween(up.axis(), kDocumentedHeadAxis), 0.5 * kRadPerDeg);
 }
 
 TEST(BodyUpAxis, LearnedAfreshWhenTheSensorHasBeenMoved) {
@@ -124,14 +124,14 @@ TEST(BodyUpAxis, LearnedAfreshWhenTheSensorHasBeenMoved) {
   walk(up, in_hand, 60.0);
   const Vec3 hand_s = in_hand.conjugate() * kDocumentedHeadAxis;
   const Vec3 pocket_s = in_pocket.conjugate() * kDocumentedHeadAxis;
-  EXPECT_LT(angleBetween(up.axis(), hand_s), 0.5 * kDeg);
+  EXPECT_LT(angleBetween(up.axis(), hand_s), 0.5 * kRadPerDeg);
   walk(up, in_pocket, 59.0, 60.0);  // less than relearn_after_s: held
-  EXPECT_LT(angleBetween(up.axis(), hand_s), 0.5 * kDeg);
+  EXPECT_LT(angleBetween(up.axis(), hand_s), 0.5 * kRadPerDeg);
   walk(up, in_pocket, 1.0 + 4.9, 119.0);  // learned afresh, but not yet for 5 s
-  EXPECT_LT(angleBetween(up.axis(), hand_s), 0.5 * kDeg);
+  EXPECT_LT(angleBetween(up.axis(), hand_s), 0.5 * kRadPerDeg);
   walk(up, in_pocket, 0.2, 124.9);
   EXPECT_TRUE(up.learned());
-  EXPECT_LT(angleBetween(up.axis(), pocket_s), 2.0 * kDeg);
+  EXPECT_LT(angleBetween(up.axis(), pocket_s), 2.0 * kRadPerDeg);
 }
 
 TEST(BodyUpAxis, ZeroTimeConstantKeepsTheDefault) {

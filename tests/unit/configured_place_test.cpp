@@ -1,22 +1,22 @@
 // The configured place ([place], headingd-replay --place): the table's keys and their errors,
 // the date the model is evaluated on, and the pipeline taking the model's field and
 // declination there until a GPS fix gives the position.
+#include "headingd/core/configured_place.hpp"
+
 #include <gtest/gtest.h>
 
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/config_error.hpp"
-#include "headingd/core/configured_place.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/toml_document.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/input_file.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 
 namespace headingd::core {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 WorldMagneticModel wmm2025() {
   return WorldMagneticModel(
@@ -103,7 +103,7 @@ TEST(ConfiguredPlace, PipelineTakesTheModelThereUntilAFix) {
   const GeodeticPosition stockholm{59.35, 18.07, 0.03};
   ASSERT_TRUE(pipeline.setPlace(stockholm, 2026.93));
   EXPECT_EQ(pipeline.output().declination_sources, kDeclWmm);
-  EXPECT_NEAR(pipeline.output().declination_rad, wmm.field(stockholm, 2026.93).declination_deg * kDegToRad, 1e-12);
+  EXPECT_NEAR(pipeline.output().declination_rad, wmm.field(stockholm, 2026.93).declination_deg * kRadPerDeg, 1e-12);
   EXPECT_TRUE(pipeline.estimator().magDisturbance().hasReference());
 
   // A fix elsewhere replaces it.
@@ -113,7 +113,7 @@ TEST(ConfiguredPlace, PipelineTakesTheModelThereUntilAFix) {
   fix.position = GeodeticPosition{-33.9, 151.2, 0.0};
   fix.decimal_year = 2026.93;
   pipeline.processGps(fix);
-  EXPECT_NEAR(pipeline.output().declination_rad, wmm.field(*fix.position, 2026.93).declination_deg * kDegToRad, 1e-12);
+  EXPECT_NEAR(pipeline.output().declination_rad, wmm.field(*fix.position, 2026.93).declination_deg * kRadPerDeg, 1e-12);
 
   // Without a model there is nothing to take.
   HeadingPipeline without(EstimatorParams{}, nullptr);

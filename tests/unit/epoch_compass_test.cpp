@@ -1,16 +1,17 @@
 // EpochCompass: the tilt-compensated heading from the means of one GPS epoch interval.
+#include "headingd/core/epoch_compass.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "headingd/core/epoch_compass.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/core/quaternion.hpp"
 
 namespace headingd::core {
 namespace {
 
-constexpr double kRad = std::numbers::pi / 180.0;
 const Vec3 kFieldNed(15.0, 0.0, 49.0);  // µT, magnetic north, dip ~73° (Stockholm)
 const Vec3 kSpecificForceNed(0.0, 0.0, -9.81);
 
@@ -21,12 +22,12 @@ Quat attitude(double roll, double pitch, double yaw) {
 
 TEST(EpochCompass, TiltedStillSensorGivesItsHeading) {
   EpochCompass compass;
-  const Quat q = attitude(8.0 * kRad, -12.0 * kRad, 123.0 * kRad);
+  const Quat q = attitude(8.0 * kRadPerDeg, -12.0 * kRadPerDeg, 123.0 * kRadPerDeg);
   const Vec3 mag = q.conjugate() * kFieldNed, accel = q.conjugate() * kSpecificForceNed;
   for (int i = 0; i < 100; ++i) compass.add(Vec3::Zero(), accel, &mag, 0.01);
   const auto heading = compass.takeHeading(50, 0.1);
   ASSERT_TRUE(heading.has_value());
-  EXPECT_NEAR(*heading, 123.0 * kRad, 1e-9);
+  EXPECT_NEAR(*heading, 123.0 * kRadPerDeg, 1e-9);
 }
 
 // The sensor turns 30° about down during the interval while its accelerometer sees an
@@ -35,19 +36,19 @@ TEST(EpochCompass, TiltedStillSensorGivesItsHeading) {
 // periods) leaves the tilt alone.
 TEST(EpochCompass, TurningAndAcceleratingSensorGivesItsMeanHeading) {
   EpochCompass compass;
-  const double rate = 30.0 * kRad;  // rad/s, for 1 s
+  const double rate = 30.0 * kRadPerDeg;  // rad/s, for 1 s
   for (int i = 1; i <= 100; ++i) {
     const double t = 0.01 * i;
-    const Quat q = attitude(5.0 * kRad, 3.0 * kRad, 40.0 * kRad + rate * t);
+    const Quat q = attitude(5.0 * kRadPerDeg, 3.0 * kRadPerDeg, 40.0 * kRadPerDeg + rate * t);
     const Vec3 body_rate = Vec3(0.0, 0.0, rate);  // about NED down; in body axes:
-    const Vec3 gyro = attitude(5.0 * kRad, 3.0 * kRad, 0.0).conjugate() * body_rate;
+    const Vec3 gyro = attitude(5.0 * kRadPerDeg, 3.0 * kRadPerDeg, 0.0).conjugate() * body_rate;
     const Vec3 walking_n(2.0 * std::sin(2.0 * std::numbers::pi * 2.0 * t), 0.0, 1.5 * std::cos(2.0 * std::numbers::pi * 2.0 * t));
     const Vec3 accel = q.conjugate() * (kSpecificForceNed + walking_n), mag = q.conjugate() * kFieldNed;
     compass.add(gyro, accel, &mag, 0.01);
   }
   const auto heading = compass.takeHeading(50, 0.1);
   ASSERT_TRUE(heading.has_value());
-  EXPECT_NEAR(*heading, (40.0 + 30.0 * 0.505) * kRad, 0.05 * kRad);  // mean of t_i = 0.01 … 1.00 is 0.505 s
+  EXPECT_NEAR(*heading, (40.0 + 30.0 * 0.505) * kRadPerDeg, 0.05 * kRadPerDeg);  // mean of t_i = 0.01 … 1.00 is 0.505 s
 }
 
 TEST(EpochCompass, TooFewSamplesOrNoFieldGiveNothingAndStartAnInterval) {

@@ -15,8 +15,8 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
 using test::kPi;
+using test::kRadPerDeg;
 using test::Random;
 
 constexpr double kG = 9.81;
@@ -84,7 +84,7 @@ TEST(Estimator, InitialisesFromTheFirstSample) {
   ASSERT_TRUE(est.output().valid);
   EXPECT_EQ(est.output().t_ns, sc.samples[0].t_ns);
   // Tilt from gravity and heading from the field of one noisy sample: within a degree.
-  EXPECT_LT(test::angleBetween(est.output().q_nb, magneticTruth(sc.truth[0].q_nb)), 1.0 * kDeg);
+  EXPECT_LT(test::angleBetween(est.output().q_nb, magneticTruth(sc.truth[0].q_nb)), 1.0 * kRadPerDeg);
 }
 
 TEST(Estimator, ConvergesToTheTruthAndEstimatesTheBiasAtRest) {
@@ -110,9 +110,9 @@ TEST(Estimator, ConvergesToTheTruthAndEstimatesTheBiasAtRest) {
       for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(o.gyro_bias_rad_s(axis), sc.bias(axis), 5e-4) << axis;
     }
   }
-  EXPECT_LT(worst_after_settling, 2.0 * kDeg);
+  EXPECT_LT(worst_after_settling, 2.0 * kRadPerDeg);
   const EstimatorOutput& o = est.output();
-  EXPECT_LT(test::angleBetween(o.q_nb, magneticTruth(sc.truth.back().q_nb)), 1.0 * kDeg);
+  EXPECT_LT(test::angleBetween(o.q_nb, magneticTruth(sc.truth.back().q_nb)), 1.0 * kRadPerDeg);
   // Held through the motion.
   for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(o.gyro_bias_rad_s(axis), sc.bias(axis), 5e-4) << axis;
   const EstimatorCounters c = est.counters();
@@ -145,15 +145,15 @@ TEST(Estimator, AStartInMotionHasItsTiltWithinASecondOrTwo) {
     const Vec3 down_estimated = est.output().q_nb.conjugate() * Vec3::UnitZ();
     const double inclination_error = test::angleBetween(down_estimated, q.conjugate() * Vec3::UnitZ());
     if (i == 0) {
-      EXPECT_GT(inclination_error, 15.0 * kDeg);  // what one sample says
+      EXPECT_GT(inclination_error, 15.0 * kRadPerDeg);  // what one sample says
     }
     if (i == 100) at_1s = inclination_error;
     if (t >= 2.0) worst_after_2s = std::max(worst_after_2s, inclination_error);
   }
-  std::printf("inclination error: %.2f deg at 1 s, at most %.2f deg from 2 s on\n", at_1s / kDeg,
-              worst_after_2s / kDeg);
-  EXPECT_LT(at_1s, 5.0 * kDeg);
-  EXPECT_LT(worst_after_2s, 3.0 * kDeg);
+  std::printf("inclination error: %.2f deg at 1 s, at most %.2f deg from 2 s on\n", at_1s / kRadPerDeg,
+              worst_after_2s / kRadPerDeg);
+  EXPECT_LT(at_1s, 5.0 * kRadPerDeg);
+  EXPECT_LT(worst_after_2s, 3.0 * kRadPerDeg);
 }
 
 TEST(Estimator, CorrectsAWrongStartingHeadingWithTheMagnetometer) {
@@ -163,7 +163,7 @@ TEST(Estimator, CorrectsAWrongStartingHeadingWithTheMagnetometer) {
   for (int i = 0; i < 100; ++i) sc.samples[static_cast<std::size_t>(i)].has_mag = false;
   Estimator est;
   for (const auto& s : sc.samples) est.process(s);
-  EXPECT_LT(test::angleBetween(est.output().q_nb, magneticTruth(sc.truth.back().q_nb)), 1.0 * kDeg);
+  EXPECT_LT(test::angleBetween(est.output().q_nb, magneticTruth(sc.truth.back().q_nb)), 1.0 * kRadPerDeg);
 }
 
 // The scenario's samples with bad ones mixed in, and how many of each kind.
@@ -245,7 +245,7 @@ TEST(Estimator, SkippedSamplesDoNotChangeTheEstimate) {
   for (const auto& s : in.stream) dirty.process(s);
   EXPECT_EQ(clean.output().q_nb.coeffs(), dirty.output().q_nb.coeffs());
   EXPECT_EQ(clean.output().gyro_bias_rad_s, dirty.output().gyro_bias_rad_s);
-  EXPECT_LT(test::angleBetween(dirty.output().q_nb, magneticTruth(sc.truth.back().q_nb)), 1.0 * kDeg);
+  EXPECT_LT(test::angleBetween(dirty.output().q_nb, magneticTruth(sc.truth.back().q_nb)), 1.0 * kRadPerDeg);
 }
 
 TEST(Estimator, RecoversFromARotationDuringAGap) {
@@ -261,7 +261,7 @@ TEST(Estimator, RecoversFromARotationDuringAGap) {
     if (i >= 1250 + 500) worst_late = std::max(worst_late, test::angleBetween(est.output().q_nb, magneticTruth(sc.truth[i].q_nb)));
   }
   EXPECT_EQ(est.counters().samples.gaps, 1u);
-  EXPECT_LT(worst_late, 2.0 * kDeg) << "worst error from 5 s after the gap to the end";
+  EXPECT_LT(worst_late, 2.0 * kRadPerDeg) << "worst error from 5 s after the gap to the end";
 }
 
 // One corrupted but finite sample (a garbled frame) in a clean rest: afterwards everything
@@ -296,7 +296,7 @@ TEST_P(SingleCorruptedSample, DoesNotDisableTheEstimator) {
   EXPECT_EQ(o.motion_level, MotionLevel::kStanding) << "d_k = " << o.accel_disturbance;
   EXPECT_TRUE(o.at_rest) << "30 s of rest after the bad sample";
   EXPECT_TRUE(o.mag_used) << "magnetometer still rejected as disturbed: " << o.mag_disturbed;
-  EXPECT_LT(test::angleBetween(o.q_nb, magneticTruth(truth)), 1.0 * kDeg);
+  EXPECT_LT(test::angleBetween(o.q_nb, magneticTruth(truth)), 1.0 * kRadPerDeg);
   for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(o.gyro_bias_rad_s(axis), bias(axis), 5e-4) << axis;
 }
 
@@ -377,7 +377,7 @@ TEST(Estimator, VerticalFieldIsCountedAndIgnored) {
     EXPECT_FALSE(est.output().mag_used);
   }
   EXPECT_EQ(est.counters().mag_no_heading, 100u);
-  EXPECT_NEAR(est.output().yaw_rad, heading, 1.0 * kDeg);
+  EXPECT_NEAR(est.output().yaw_rad, heading, 1.0 * kRadPerDeg);
 }
 
 TEST(Estimator, RandomGarbageNeverMakesTheOutputNonFinite) {
@@ -421,7 +421,7 @@ TEST(Estimator, RandomGarbageNeverMakesTheOutputNonFinite) {
   expectFinite(est.output(), "after garbage");
   const Vec3 down_est = est.output().q_nb.inverse() * Vec3::UnitZ();
   const Vec3 down_true = sc.truth.back().q_nb.inverse() * Vec3::UnitZ();
-  EXPECT_LT(test::angleBetween(down_est, down_true), 1.0 * kDeg);
+  EXPECT_LT(test::angleBetween(down_est, down_true), 1.0 * kRadPerDeg);
 }
 
 TEST(Estimator, IsDeterministic) {
@@ -522,8 +522,8 @@ TEST(Estimator, RestoresTheBackgroundHeadingWhenADisturbanceIsConfirmed) {
   const double without = final_heading_error(off, restores_off);
   EXPECT_EQ(restores_default, 1u);
   EXPECT_EQ(restores_off, 0u);
-  EXPECT_LT(with_restore, 0.3 * kDeg);  // measured 0.14°
-  EXPECT_GT(without, 1.0 * kDeg);       // measured 1.67°: the pull before detection stays
+  EXPECT_LT(with_restore, 0.3 * kRadPerDeg);  // measured 0.14°
+  EXPECT_GT(without, 1.0 * kRadPerDeg);       // measured 1.67°: the pull before detection stays
 }
 
 // The same door, but the gyro's bias was never learned (no rest test: a phone carried from the

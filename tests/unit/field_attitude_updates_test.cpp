@@ -14,29 +14,32 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 
 constexpr double kGravity = 9.81;
 const Vec3 kFieldNed(19.0, 0.0, 47.0);  // µT, magnetic NED: 51 µT at a dip of 68°
 
 Quat attitude(double roll_deg, double pitch_deg, double yaw_deg) {
-  return Quat(Eigen::AngleAxisd(yaw_deg * kDeg, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch_deg * kDeg, Vec3::UnitY()) *
-              Eigen::AngleAxisd(roll_deg * kDeg, Vec3::UnitX()));
+  return Quat(Eigen::AngleAxisd(yaw_deg * kRadPerDeg, Vec3::UnitZ()) *
+              Eigen::AngleAxisd(pitch_deg * kRadPerDeg, Vec3::UnitY()) *
+              Eigen::AngleAxisd(roll_deg * kRadPerDeg, Vec3::UnitX()));
 }
 
 // The angle between two attitudes' down axes (tilt) and the difference of their yaws.
 double tiltErrorDeg(const Quat& a, const Quat& b) {
   const Vec3 down_a = a.conjugate() * Vec3::UnitZ(), down_b = b.conjugate() * Vec3::UnitZ();
-  return std::atan2(down_a.cross(down_b).norm(), down_a.dot(down_b)) / kDeg;
+  return std::atan2(down_a.cross(down_b).norm(), down_a.dot(down_b)) / kRadPerDeg;
 }
-double yawErrorDeg(const Quat& a, const Quat& b) { return std::remainder(yawZyx(a) - yawZyx(b), 2 * M_PI) / kDeg; }
+double yawErrorDeg(const Quat& a, const Quat& b) {
+  return std::remainder(yawZyx(a) - yawZyx(b), 2 * M_PI) / kRadPerDeg;
+}
 
 // An EKF at `estimate` whose covariance is in its tilt form (one gravity update has run) with
 // a tilt sigma of about sigma_deg.
 AttitudeEkf ekfAt(const Quat& estimate, double sigma_deg) {
   AttitudeEkf ekf;
   ekf.setAttitude(estimate);
-  const double s = 0.5 * sigma_deg * kDeg;  // the 4-D state moves by half the angle
+  const double s = 0.5 * sigma_deg * kRadPerDeg;  // the 4-D state moves by half the angle
   ekf.setCovariance(s * s * Mat4::Identity());
   const Vec3 gravity_seen = estimate.conjugate() * Vec3(0.0, 0.0, -kGravity);
   ekf.updateGravity(gravity_seen, 100.0, kGravity);  // consistent and nearly uninformative
@@ -54,13 +57,13 @@ TEST(AttitudeEkfUpdate, ATiltOnlyUpdateCorrectsTheTiltAndLeavesTheYaw) {
   AttitudeEkf ekf = ekfAt(attitude(14.0, -5.0, 40.0), 5.0);
   const double yaw_before = yawZyx(ekf.attitude());
   ASSERT_NEAR(tiltErrorDeg(ekf.attitude(), truth), 4.0, 0.1);
-  const auto result = ekf.update(fieldMeasurement(ekf, truth, kFieldNed, 0.2), 2.0 * kDeg, AttitudeAxes{}, 1e9);
+  const auto result = ekf.update(fieldMeasurement(ekf, truth, kFieldNed, 0.2), 2.0 * kRadPerDeg, AttitudeAxes{}, 1e9);
   ASSERT_TRUE(result.applied);
   EXPECT_LT(tiltErrorDeg(ekf.attitude(), truth), 0.5);
   EXPECT_NEAR(result.turn_rad.z(), 0.0, 1e-12);
   // Nothing about down; zyx yaw moves a little with the tilt (second order: tilt × roll).
-  EXPECT_NEAR(yawZyx(ekf.attitude()), yaw_before, 0.5 * kDeg);
-  EXPECT_LT(ekf.tiltCovariance().trace(), 2.0 * std::pow(5.0 * kDeg, 2));  // it has learned
+  EXPECT_NEAR(yawZyx(ekf.attitude()), yaw_before, 0.5 * kRadPerDeg);
+  EXPECT_LT(ekf.tiltCovariance().trace(), 2.0 * std::pow(5.0 * kRadPerDeg, 2));  // it has learned
 }
 
 TEST(AttitudeEkfUpdate, AHeadingOnlyUpdateCorrectsTheHeadingAndLeavesTheTilt) {
@@ -69,14 +72,14 @@ TEST(AttitudeEkfUpdate, AHeadingOnlyUpdateCorrectsTheHeadingAndLeavesTheTilt) {
   // tilt): a well-known tilt here.
   AttitudeEkf ekf = ekfAt(attitude(10.0, -5.0, 46.0), 0.1);
   const Eigen::Matrix2d tilt_before = ekf.tiltCovariance();
-  const auto result = ekf.update(fieldMeasurement(ekf, truth, kFieldNed, 0.2), 10.0 * kDeg,
+  const auto result = ekf.update(fieldMeasurement(ekf, truth, kFieldNed, 0.2), 10.0 * kRadPerDeg,
                                  AttitudeAxes{.tilt = false, .heading = true}, 1e9);
   ASSERT_TRUE(result.applied);
   EXPECT_NEAR(yawErrorDeg(ekf.attitude(), truth), 0.0, 0.3);
   EXPECT_NEAR(result.turn_rad.x(), 0.0, 1e-12);
   EXPECT_NEAR(result.turn_rad.y(), 0.0, 1e-12);
   EXPECT_EQ(ekf.tiltCovariance(), tilt_before);
-  EXPECT_LT(result.heading_variance_rad2, std::pow(1.0 * kDeg, 2));
+  EXPECT_LT(result.heading_variance_rad2, std::pow(1.0 * kRadPerDeg, 2));
 }
 
 TEST(AttitudeEkfUpdate, TheGravityModelThroughTheGenericUpdateIsTheGravityUpdate) {
@@ -91,7 +94,7 @@ TEST(AttitudeEkfUpdate, TheGravityModelThroughTheGenericUpdateIsTheGravityUpdate
   NavigationState x;
   x.q_nb = generic.attitude();
   const ReferenceVectorModel gravity{Vec3(0.0, 0.0, -kGravity), 0.3};
-  ASSERT_TRUE(generic.update(gravity.linearise(x, accel), 5.0 * kDeg, AttitudeAxes{}, 1e9).applied);
+  ASSERT_TRUE(generic.update(gravity.linearise(x, accel), 5.0 * kRadPerDeg, AttitudeAxes{}, 1e9).applied);
   EXPECT_LT(generic.attitude().angularDistance(specialised.attitude()), 1e-4);
   EXPECT_TRUE(generic.tiltCovariance().isApprox(specialised.tiltCovariance(), 1e-3));
 }
@@ -100,7 +103,7 @@ TEST(AttitudeEkfUpdate, TheGateRejectsAnInnovationBeyondItAndChangesNothing) {
   const Quat truth = attitude(0.0, 0.0, 0.0);
   AttitudeEkf ekf = ekfAt(attitude(30.0, 0.0, 0.0), 1.0);  // far beyond its 1° sigma
   const Vec4 before = ekf.state();
-  const auto result = ekf.update(fieldMeasurement(ekf, truth, kFieldNed, 0.2), 1.0 * kDeg, AttitudeAxes{}, 16.27);
+  const auto result = ekf.update(fieldMeasurement(ekf, truth, kFieldNed, 0.2), 1.0 * kRadPerDeg, AttitudeAxes{}, 16.27);
   EXPECT_FALSE(result.applied);
   EXPECT_GT(result.innovation_nis, 16.27);
   EXPECT_EQ(ekf.state(), before);
@@ -122,7 +125,7 @@ TEST(MagneticAttitudeUpdate, TheWmmFieldCorrectsTheTiltOncePerInterval) {
   mau.setReference(kFieldNed.norm(), std::atan2(kFieldNed.z(), kFieldNed.x()));
   const Vec3 measured = truth.conjugate() * kFieldNed;
   int applied = 0;
-  for (int i = 0; i < 100; ++i) applied += mau.update(ekf, measured, 0.1, 2.0 * kDeg) ? 1 : 0;  // 10 s
+  for (int i = 0; i < 100; ++i) applied += mau.update(ekf, measured, 0.1, 2.0 * kRadPerDeg) ? 1 : 0;  // 10 s
   EXPECT_EQ(applied, 10);
   EXPECT_EQ(mau.counters().applied, 10u);
   EXPECT_LT(tiltErrorDeg(ekf.attitude(), truth), 0.5);
@@ -149,7 +152,7 @@ TEST(MagneticAttitudeUpdate, AnAttitudeTheMagneticFrameDoesNotConfirmIsUndone) {
   params.verify_max_rad = 1e-6;  // no corrected attitude can be this close with 2 µT of noise
   MagneticAttitudeUpdate mau(params);
   mau.setReference(kFieldNed.norm(), std::atan2(kFieldNed.z(), kFieldNed.x()));
-  EXPECT_FALSE(mau.update(ekf, truth.conjugate() * kFieldNed, 1.0, 2.0 * kDeg));
+  EXPECT_FALSE(mau.update(ekf, truth.conjugate() * kFieldNed, 1.0, 2.0 * kRadPerDeg));
   EXPECT_EQ(mau.counters().rejected_by_verification, 1u);
   EXPECT_EQ(ekf.state(), before);
 }
@@ -168,19 +171,19 @@ TEST(QuasiStaticFieldUpdate, HoldsTheHeadingToThePeriodsStartWhileTheFieldIsSetA
   Quat gyro = ekf.attitude();
   EXPECT_EQ(qsf.update(ekf, measured, gyro, true, true, 0.01, kRateSigma), 0.0);  // the period's reference
   // Over a second the gyro drifts the estimate by 3° about down; the field has not turned.
-  ekf.turnHeading(3.0 * kDeg);
-  gyro = headingRotation(3.0 * kDeg) * gyro;
+  ekf.turnHeading(3.0 * kRadPerDeg);
+  gyro = headingRotation(3.0 * kRadPerDeg) * gyro;
   EXPECT_EQ(qsf.update(ekf, measured, gyro, true, /*set_aside=*/false, 0.5, kRateSigma), 0.0);  // the observer's
   // One sample at 1 µT says the heading to about 2°; twenty of them to a fraction of a degree.
   const double first_turn = qsf.update(ekf, measured, gyro, true, true, 0.5, kRateSigma);
-  EXPECT_LT(first_turn, -1.5 * kDeg);
+  EXPECT_LT(first_turn, -1.5 * kRadPerDeg);
   for (int i = 1; i < 20; ++i) qsf.update(ekf, measured, gyro, true, true, 0.01, kRateSigma);
   EXPECT_NEAR(yawErrorDeg(ekf.attitude(), truth), 0.0, 0.1);
   EXPECT_EQ(qsf.counters().applied, 20u);
   // The period ends: the next one takes a new reference rather than the old.
   EXPECT_EQ(qsf.update(ekf, measured, gyro, false, true, 0.01, kRateSigma), 0.0);
-  ekf.turnHeading(3.0 * kDeg);
-  gyro = headingRotation(3.0 * kDeg) * gyro;
+  ekf.turnHeading(3.0 * kRadPerDeg);
+  gyro = headingRotation(3.0 * kRadPerDeg) * gyro;
   EXPECT_EQ(qsf.update(ekf, measured, gyro, true, true, 0.01, kRateSigma), 0.0);
   EXPECT_NEAR(qsf.update(ekf, measured, gyro, true, true, 0.01, kRateSigma), 0.0, 1e-9);
 }

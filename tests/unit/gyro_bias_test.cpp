@@ -243,7 +243,7 @@ TEST(GyroBiasEstimator, ASlowTurnIsMeasuredNotLearnedAsBias) {
     GyroBiasEstimator est(p);
     StillSensor s{Quat::Identity()};
     s.bias = Vec3(0.012, -0.008, 0.015);
-    s.rate_rad_s = 1.0 * test::kDeg * axis;
+    s.rate_rad_s = 1.0 * test::kRadPerDeg * axis;
     run(est, s, 20.0);
     EXPECT_GE(est.restSeconds(), 15.0) << axis.transpose();
     expectBias(est, s.bias, 1e-3);
@@ -262,11 +262,11 @@ TEST(GyroBiasEstimator, AHandsSlowDriftAboutTheVerticalIsSeenByANoisyHeldField) 
   // which gravity sees precisely did not turn.
   const EstimatorParams p;
   GyroBiasEstimator est(p);
-  StillSensor s{test::fromYawPitchRoll(0.4, 70.0 * test::kDeg, 0.1)};
+  StillSensor s{test::fromYawPitchRoll(0.4, 70.0 * test::kRadPerDeg, 0.1)};
   s.bias = Vec3(0.012, -0.02, 0.006);
   s.gyro_noise = 0.01;
   const Vec3 up_sensor = s.q_nb.conjugate() * Vec3(0.0, 0.0, -1.0);  // stays so: the turn is about it
-  s.rate_rad_s = 1.5 * test::kDeg * up_sensor;
+  s.rate_rad_s = 1.5 * test::kRadPerDeg * up_sensor;
   HeldMagnetometer magnetometer{1.5, 4};
   double worst_sigmas = 0.0;
   for (int step = 0; step < 20; ++step) {  // every 0.5 s
@@ -276,8 +276,9 @@ TEST(GyroBiasEstimator, AHandsSlowDriftAboutTheVerticalIsSeenByANoisyHeldField) 
     worst_sigmas = std::max(worst_sigmas, std::abs(error) / std::sqrt(up_sensor.dot(est.covariance() * up_sensor)));
   }
   const double error = (est.bias() - s.bias).dot(up_sensor);
-  std::printf("vertical bias error after 10 s: %.1f mrad/s (the drift %.1f); at most %.1f sigma from the first block on\n",
-              1e3 * error, 1.5e3 * test::kDeg, worst_sigmas);
+  std::printf(
+      "vertical bias error after 10 s: %.1f mrad/s (the drift %.1f); at most %.1f sigma from the first block on\n",
+      1e3 * error, 1.5e3 * test::kRadPerDeg, worst_sigmas);
   EXPECT_EQ(est.stillBlocks(), 1u);  // one block, grown from 0.5 s to 9.5 s
   EXPECT_LT(std::abs(error), 0.005);
   EXPECT_LT(worst_sigmas, 3.0);
@@ -287,7 +288,7 @@ TEST(GyroBiasEstimator, ATurnFasterThanTheLimitIsNotStill) {
   const EstimatorParams p;  // rest_max_turn_rate_rad_s = 2 deg/s
   GyroBiasEstimator est(p);
   StillSensor s{Quat::Identity()};
-  s.rate_rad_s = Vec3(0.0, 3.0 * test::kDeg, 0.0);
+  s.rate_rad_s = Vec3(0.0, 3.0 * test::kRadPerDeg, 0.0);
   run(est, s, 20.0);
   EXPECT_EQ(est.stillBlocks(), 0u);
   EXPECT_EQ(est.bias(), Vec3::Zero());
@@ -298,9 +299,9 @@ TEST(GyroBiasEstimator, WithoutTheFieldATurnAboutGravityCountsAsBias) {
   const EstimatorParams p;
   GyroBiasEstimator est(p);
   StillSensor s{Quat::Identity()};  // body z is down
-  s.rate_rad_s = Vec3(0.0, 0.0, 1.0 * test::kDeg);
+  s.rate_rad_s = Vec3(0.0, 0.0, 1.0 * test::kRadPerDeg);
   run(est, s, 10.0, /*with_field=*/false);
-  EXPECT_NEAR(est.bias().z(), 1.0 * test::kDeg, 1e-3);
+  EXPECT_NEAR(est.bias().z(), 1.0 * test::kRadPerDeg, 1e-3);
   EXPECT_NEAR(est.bias().x(), 0.0, 1e-3);
 }
 

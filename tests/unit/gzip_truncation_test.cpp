@@ -11,6 +11,7 @@
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/imu_csv_reader.hpp"
 #include "headingd/files/input_file.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "temp_csv_files.hpp"
 
@@ -47,10 +48,12 @@ class GzipFiles : public TempCsvFiles {
     data[i] = static_cast<char>(~data[i]);
     return writePlain(name, data);
   }
+  // The message of what a reader throws: CsvError from the CSV readers, FileError from the
+  // whole-file reads (gzip_file.hpp).
   static std::string errorOf(auto read) {
     try {
       read();
-    } catch (const CsvError& e) {
+    } catch (const std::runtime_error& e) {
       return e.what();
     }
     return "";

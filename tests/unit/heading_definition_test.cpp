@@ -8,8 +8,8 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
 using test::kPi;
+using test::kRadPerDeg;
 using test::Random;
 
 TEST(HeadingDefinition, ThesisExample331) {
@@ -18,8 +18,8 @@ TEST(HeadingDefinition, ThesisExample331) {
   // head) stays at 0°.
   const Quat q = Quat(0.649, 0.0, -0.760, 0.0).normalized();
   EXPECT_NEAR(q.w(), std::cos(-1.1 * kPi / 4.0), 1e-3);
-  EXPECT_NEAR(std::abs(headingOf(q)), kPi, 0.5 * kDeg);
-  EXPECT_NEAR(headingOfAxis(q, kDocumentedHeadAxis), 0.0, 0.5 * kDeg);
+  EXPECT_NEAR(std::abs(headingOf(q)), kPi, 0.5 * kRadPerDeg);
+  EXPECT_NEAR(headingOfAxis(q, kDocumentedHeadAxis), 0.0, 0.5 * kRadPerDeg);
   // The exact rotation gives the same, to rounding.
   const Quat exact(Eigen::AngleAxisd(-1.1 * kPi / 2.0, Vec3::UnitY()));
   EXPECT_NEAR(std::abs(headingOf(exact)), kPi, 1e-9);

@@ -8,10 +8,11 @@
 #include <limits>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/input_file.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 
 namespace headingd::core {
 namespace {
@@ -75,7 +76,7 @@ TEST(HeadingPipelineGps, VariationBeyond180DegreesIsLeftOut) {
   HeadingPipeline& pipeline = still.pipeline;
   std::int64_t& t = still.t;
   GpsObservation g = fixAt(t);
-  g.magvar_rad = 200.0 * std::numbers::pi / 180.0;
+  g.magvar_rad = 200.0 * kRadPerDeg;
   pipeline.processGps(g);
   EXPECT_EQ(pipeline.output().declination_sources, kDeclNone);
   EXPECT_EQ(pipeline.gpsValuesIgnored(), 1u);

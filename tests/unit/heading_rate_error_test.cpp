@@ -16,7 +16,7 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 
 const Vec3 kFieldNed(20.0, 2.0, 45.0);  // µT
 
@@ -71,7 +71,7 @@ HeadingErrors runWithBias(const Motion& motion, const Vec3& bias, const Estimato
   return e;
 }
 
-const Quat kTilt = test::fromYawPitchRoll(0.0, 10.0 * kDeg, 20.0 * kDeg);
+const Quat kTilt = test::fromYawPitchRoll(0.0, 10.0 * kRadPerDeg, 20.0 * kRadPerDeg);
 
 // Turning at a steady 0.3 rad/s about the vertical (too fast to be taken for rest), the sensor
 // tilted by 10° and 20°.
@@ -83,7 +83,7 @@ Motion steadyTurn() {
 // Walking on a fixed heading: the trunk sways ±3° at the stride's 1 Hz and bounces ±2 m/s² at
 // the steps' 2 Hz (never still for the rest test), the sensor tilted by 10° and 20°.
 Motion walkingOnAHeading(double heading_rad) {
-  constexpr double kSway = 3.0 * kDeg, kOmega = 2.0 * 3.14159265358979323846;
+  constexpr double kSway = 3.0 * kRadPerDeg, kOmega = 2.0 * 3.14159265358979323846;
   return {[=](double t) { return Quat(headingRotation(heading_rad + kSway * std::sin(kOmega * t)) * kTilt); },
           Vec3::Zero(), [=](double t) { return Vec3(0.0, 0.0, kSway * kOmega * std::cos(kOmega * t)); },
           [=](double t) { return Vec3(0.0, 0.0, 2.0 * std::sin(2.0 * kOmega * t)); }};
@@ -96,7 +96,7 @@ TEST(HeadingRateError, TheTermItselfLearnsAConstantVerticalBias) {
   without.mag_rate_error_time_constant_s = 0.0;
   const HeadingErrors alone = runWithBias(steadyTurn(), kVerticalBias, without, 1, 600.0, true);
   // The observer alone: the offset δ·τ (0.01 · 15 s = 8.6°) stays.
-  EXPECT_GT(alone.worst_after_300_s, 6.0 * kDeg);
+  EXPECT_GT(alone.worst_after_300_s, 6.0 * kRadPerDeg);
   // And the gravity update's turns, which see the tilted part of the rate error turning
   // with the heading, are not taken for a horizontal bias (the sensor keeps turning).
   EXPECT_LT(alone.worst_horizontal_bias, 0.002);
@@ -107,26 +107,26 @@ TEST(HeadingRateError, TheTermItselfLearnsAConstantVerticalBias) {
   with_integral.mag_rate_error_settle_s = 0.0;
   for (std::uint32_t seed = 1; seed <= 3; ++seed) {
     const HeadingErrors with = runWithBias(steadyTurn(), kVerticalBias, with_integral, seed, 600.0, false);
-    EXPECT_LT(with.worst_after_300_s, 1.0 * kDeg) << "seed " << seed;
+    EXPECT_LT(with.worst_after_300_s, 1.0 * kRadPerDeg) << "seed " << seed;
     // The vertical part of the rate error is learned and taken off: body z is tilted by 10°
     // and 20° from the vertical, so 0.01 · cos 10° · cos 20°.
-    EXPECT_NEAR(with.vertical_rate_correction, -0.01 * std::cos(10.0 * kDeg) * std::cos(20.0 * kDeg), 0.001)
+    EXPECT_NEAR(with.vertical_rate_correction, -0.01 * std::cos(10.0 * kRadPerDeg) * std::cos(20.0 * kRadPerDeg), 0.001)
         << "seed " << seed;
   }
 }
 
 TEST(HeadingRateError, ByDefaultAWalkInACleanFieldOnASteadyHeadingLeavesNoLastingOffset) {
   const EstimatorParams defaults;
-  const double expected = -0.01 * std::cos(10.0 * kDeg) * std::cos(20.0 * kDeg);
+  const double expected = -0.01 * std::cos(10.0 * kRadPerDeg) * std::cos(20.0 * kRadPerDeg);
   // Outdoors with a fix, and without one (no receiver, or no sky) where the disturbance tests
   // do not fire.
   for (const bool fix : {true, false}) {
     for (std::uint32_t seed = 1; seed <= 3; ++seed) {
       const HeadingErrors clean = runWithBias(walkingOnAHeading(1.0), kVerticalBias, defaults, seed, 900.0, fix);
       std::printf("%s, seed %u: worst heading error in the last minute %.2f deg, rate learned %.2f mrad/s\n",
-                  fix ? "with a fix" : "without a fix", seed, clean.worst_in_last_minute / kDeg,
+                  fix ? "with a fix" : "without a fix", seed, clean.worst_in_last_minute / kRadPerDeg,
                   1e3 * clean.vertical_rate_correction);
-      EXPECT_LT(clean.worst_in_last_minute, 1.0 * kDeg) << "fix " << fix << " seed " << seed;
+      EXPECT_LT(clean.worst_in_last_minute, 1.0 * kRadPerDeg) << "fix " << fix << " seed " << seed;
       EXPECT_NEAR(clean.vertical_rate_correction, expected, 0.001) << "fix " << fix << " seed " << seed;
     }
   }
@@ -135,9 +135,9 @@ TEST(HeadingRateError, ByDefaultAWalkInACleanFieldOnASteadyHeadingLeavesNoLastin
   fix_needed.mag_rate_error_max_set_aside_share = 0.0;
   const HeadingErrors indoors = runWithBias(walkingOnAHeading(1.0), kVerticalBias, fix_needed, 1, 900.0, false);
   std::printf("only with a fix, none: worst heading error in the last minute %.2f deg\n",
-              indoors.worst_in_last_minute / kDeg);
+              indoors.worst_in_last_minute / kRadPerDeg);
   EXPECT_EQ(indoors.vertical_rate_correction, 0.0);
-  EXPECT_GT(indoors.worst_in_last_minute, 6.0 * kDeg);
+  EXPECT_GT(indoors.worst_in_last_minute, 6.0 * kRadPerDeg);
 }
 
 // A building's field, without a fix and without any rate error: after a minute outdoors the
@@ -148,7 +148,7 @@ TEST(HeadingRateError, ByDefaultAWalkInACleanFieldOnASteadyHeadingLeavesNoLastin
 TEST(HeadingRateError, ABuildingsFieldThatTheTestsFlagPartOfTheTimeIsNotLearnedAsARateError) {
   const FieldAt building = [](double t, double) {
     if (t < 60.0) return kFieldNed;
-    const double turn = 25.0 * kDeg * std::sin(2.0 * 3.14159265358979323846 * (t - 60.0) / 300.0);
+    const double turn = 25.0 * kRadPerDeg * std::sin(2.0 * 3.14159265358979323846 * (t - 60.0) / 300.0);
     const bool flagged_part = std::fmod(t, 10.0) < 4.0;
     return Vec3(headingRotation(turn) * kFieldNed * (flagged_part ? 1.4 : 1.0));
   };
@@ -171,7 +171,7 @@ TEST(HeadingRateError, ABuildingsFieldThatTheTestsFlagPartOfTheTimeIsNotLearnedA
 // whose error depends on the heading (a calibration's residual hard iron: ±5°), without any
 // rate error: the innovations after each turn are the field's, not a rate error's.
 Motion legsOfAWalk() {
-  constexpr double kLegS = 60.0, kTurnS = 3.0, kTurn = 90.0 * kDeg;
+  constexpr double kLegS = 60.0, kTurnS = 3.0, kTurn = 90.0 * kRadPerDeg;
   const auto heading = [=](double t) {
     const double leg = std::floor(t / (kLegS + kTurnS));
     const double into = t - leg * (kLegS + kTurnS);
@@ -188,7 +188,7 @@ Motion legsOfAWalk() {
 
 TEST(HeadingRateError, AFieldErrorThatChangesWithTheHeadingIsNotLearnedAsARateError) {
   const FieldAt residual_hard_iron = [](double, double heading_rad) {
-    return Vec3(headingRotation(5.0 * kDeg * std::sin(heading_rad + 0.5)) * kFieldNed);
+    return Vec3(headingRotation(5.0 * kRadPerDeg * std::sin(heading_rad + 0.5)) * kFieldNed);
   };
   const EstimatorParams defaults;
   EstimatorParams unsettled = defaults;

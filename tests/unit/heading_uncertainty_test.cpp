@@ -17,7 +17,7 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 
 constexpr double kDt = 0.01;
 
@@ -89,7 +89,7 @@ TEST(HeadingUncertainty, IsThatOfAnAngleUniformOnTheCircleUntilTheFirstFieldSamp
 }
 
 TEST(HeadingUncertainty, StatesTheSpreadOfTheObserversErrorUsedDisturbedAndUsedAgain) {
-  const HeadingUncertaintyParams p{2.0 * kDeg, 5.0, 0.0};
+  const HeadingUncertaintyParams p{2.0 * kRadPerDeg, 5.0, 0.0};
   const double rate_sigma = 0.002;  // rad/s: a bias learned at rest, to 0.1 deg/s
   HeadingUncertainty model(p);
   MonteCarlo mc(p, rate_sigma, 1000, 7);
@@ -108,11 +108,11 @@ TEST(HeadingUncertainty, StatesTheSpreadOfTheObserversErrorUsedDisturbedAndUsedA
     EXPECT_NEAR(model.sigmaRad() / mc.spreadOfE(), 1.0, 0.08);  // 1000 draws: 2.2 % per σ
   }
   // While disturbed the error grew by the rate error over 20 s (0.04 rad): the class said so.
-  EXPECT_GT(model.sigmaRad(), 0.5 * kDeg);
+  EXPECT_GT(model.sigmaRad(), 0.5 * kRadPerDeg);
 }
 
 TEST(HeadingUncertainty, WithTheIntegralTermTheRateErrorItLearnsLeavesTheSpread) {
-  const HeadingUncertaintyParams p{1.0 * kDeg, 2.0, 0.0};
+  const HeadingUncertaintyParams p{1.0 * kRadPerDeg, 2.0, 0.0};
   const double rate_sigma = 0.01;  // no rest: a rate error of 0.6 deg/s may be there
   HeadingUncertainty model(p);
   MonteCarlo mc(p, rate_sigma, 1000, 11);
@@ -130,7 +130,7 @@ TEST(HeadingUncertainty, ASensorThatKeepsItsAttitudeKeepsItsCalibrationsResidual
   // time constants the heading's error is that error. The class says so when told that the
   // floor's part decorrelates with the attitude's turn; taken as decorrelating with time
   // (the person moves on) it states a fraction of it.
-  HeadingUncertaintyParams p{2.5 * kDeg, 30.0, 0.0};
+  HeadingUncertaintyParams p{2.5 * kRadPerDeg, 30.0, 0.0};
   p.field_turn_rad = 1.19;
   HeadingUncertaintyParams by_time = p;
   by_time.field_turn_rad = 0.0;
@@ -151,7 +151,7 @@ TEST(HeadingUncertainty, ATurningSensorShowsItsResidualFromNewSidesAndTheSigmaFo
   // The same residual on a sensor that keeps turning (0.2 rad/s): the field's error changes
   // with the attitude (correlated over 1.19 / 0.2 = 6 s), the observer (15 s) averages it to
   // about √(6 / 21) of the floor, and the class states that smaller spread.
-  HeadingUncertaintyParams p{2.5 * kDeg, 30.0, 0.0};
+  HeadingUncertaintyParams p{2.5 * kRadPerDeg, 30.0, 0.0};
   p.field_turn_rad = 1.19;
   const double rate_sigma = 0.0005;
   HeadingUncertainty model(p);
@@ -163,14 +163,14 @@ TEST(HeadingUncertainty, ATurningSensorShowsItsResidualFromNewSidesAndTheSigmaFo
 }
 
 TEST(HeadingUncertainty, AFieldThatShowsItsErrorsRaisesTheSigma) {
-  const HeadingUncertaintyParams p{1.0 * kDeg, 10.0, 0.0};
+  const HeadingUncertaintyParams p{1.0 * kRadPerDeg, 10.0, 0.0};
   HeadingUncertainty quiet(p), shown(p);
   test::Random rng(3);
   const double gain = magObserverGain(kDt, 15.0);
   double innovation = 0.0;
   for (int i = 0; i < 6000; ++i) {
     // The field's heading wanders by 5 deg over a few seconds: innovations show it.
-    innovation = 0.999 * innovation + rng.normal(5.0 * kDeg * std::sqrt(1.0 - 0.999 * 0.999));
+    innovation = 0.999 * innovation + rng.normal(5.0 * kRadPerDeg * std::sqrt(1.0 - 0.999 * 0.999));
     for (HeadingUncertainty* h : {&quiet, &shown}) h->predict(kDt, 1e-8);
     shown.observeInnovation(innovation, kDt);
     quiet.correct(gain, 0.0);
@@ -183,7 +183,7 @@ TEST(HeadingUncertainty, NoSingleEarlySampleStandsForTheFieldsSpread) {
   // One noisy magnetometer sample (20 deg off) among clean ones right after the heading was
   // set: averaged with the second's other samples it says next to nothing about the field.
   // (Seeded with it, the spread's average said 20 deg for a whole correlation time.)
-  const HeadingUncertaintyParams p{1.0 * kDeg, 30.0, 0.0};
+  const HeadingUncertaintyParams p{1.0 * kRadPerDeg, 30.0, 0.0};
   HeadingUncertainty clean(p), one_noisy(p);
   const double gain = magObserverGain(kDt, 15.0);
   for (HeadingUncertainty* h : {&clean, &one_noisy}) {
@@ -193,7 +193,7 @@ TEST(HeadingUncertainty, NoSingleEarlySampleStandsForTheFieldsSpread) {
   for (int i = 0; i < 1000; ++i) {
     for (HeadingUncertainty* h : {&clean, &one_noisy}) h->predict(kDt, 1e-8);
     clean.observeInnovation(0.0, kDt);
-    one_noisy.observeInnovation(i == 0 ? 20.0 * kDeg : 0.0, kDt);
+    one_noisy.observeInnovation(i == 0 ? 20.0 * kRadPerDeg : 0.0, kDt);
     for (HeadingUncertainty* h : {&clean, &one_noisy}) h->correct(gain, 0.0);
   }
   EXPECT_LT(one_noisy.sigmaRad(), 1.05 * clean.sigmaRad());
@@ -206,7 +206,7 @@ TEST(HeadingUncertainty, WhereTheTestsSetMuchOfTheFieldAsideTheRestCountsForLess
   // of gains: about the same ratio, √113.5; measured 10.1); with the share 0 the set-aside
   // samples change nothing; and once the field is clean for several correlation times the
   // sigma is back.
-  const HeadingUncertaintyParams off{1.0 * kDeg, 10.0, 0.0, 0.0};
+  const HeadingUncertaintyParams off{1.0 * kRadPerDeg, 10.0, 0.0, 0.0};
   HeadingUncertaintyParams on = off;
   on.set_aside_share = 0.25;
   HeadingUncertainty plain(off), ignoring(off), counting(on);
@@ -217,7 +217,7 @@ TEST(HeadingUncertainty, WhereTheTestsSetMuchOfTheFieldAsideTheRestCountsForLess
     plain.correct(gain, 0.0);
     for (HeadingUncertainty* h : {&ignoring, &counting}) {
       if (set_aside) {
-        h->observeSetAside(30.0 * kDeg, kDt);
+        h->observeSetAside(30.0 * kRadPerDeg, kDt);
       } else {
         h->observeInnovation(0.0, kDt);
         h->correct(gain, 0.0);
@@ -242,7 +242,7 @@ TEST(HeadingUncertainty, WhereTheTestsSetMuchOfTheFieldAsideTheRestCountsForLess
 class PhoneWithoutRest {
  public:
   static constexpr double kRateSigma = 0.05;
-  static HeadingUncertaintyParams params() { return {2.5 * kDeg, 30.0, 0.0}; }
+  static HeadingUncertaintyParams params() { return {2.5 * kRadPerDeg, 30.0, 0.0}; }
 
   explicit PhoneWithoutRest(test::Random& rng)
       : b(rng.normal(kRateSigma)), u(rng.normal(params().field_sigma_rad)), rng_(rng) {}
@@ -251,7 +251,7 @@ class PhoneWithoutRest {
     e += b * kDt;
     u = phi_ * u + rng_.normal(w_);
     const bool first = !model.known();
-    const double innovation = u - e + rng_.normal(3.0 * kDeg);
+    const double innovation = u - e + rng_.normal(3.0 * kRadPerDeg);
     if (!first) model.observeInnovation(innovation, kDt);
     model.correct(gain_, 0.0);
     e = first ? u : e + gain_ * innovation;
@@ -284,8 +284,8 @@ TEST(HeadingUncertainty, InnovationsThatShowTheRateErrorSmallNarrowTheSigmaAndIt
     if (std::abs(draw.b) < 0.005) {
       ++small;
       SCOPED_TRACE(draw.b);
-      EXPECT_GT(model.priorSigmaRad(), 30.0 * kDeg);
-      EXPECT_LT(model.sigmaRad(), 10.0 * kDeg);
+      EXPECT_GT(model.priorSigmaRad(), 30.0 * kRadPerDeg);
+      EXPECT_LT(model.sigmaRad(), 10.0 * kRadPerDeg);
     }
   }
   EXPECT_GE(within, 0.9 * kDraws);

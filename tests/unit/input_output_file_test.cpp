@@ -14,7 +14,7 @@
 
 #include "headingd/files/input_file.hpp"
 #include "headingd/files/line_reader.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/output_file.hpp"
 #include "temp_csv_files.hpp"
 

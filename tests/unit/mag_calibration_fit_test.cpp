@@ -1,5 +1,6 @@
 // MagCalibrationFit and CalibratedImuStream: a magnetometer calibration is used while it
 // explains the readings and set aside while the raw readings fit better.
+#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/core/mag_calibration_fit.hpp"
 
 #include <gtest/gtest.h>

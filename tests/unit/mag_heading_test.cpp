@@ -13,8 +13,8 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
 using test::kPi;
+using test::kRadPerDeg;
 using test::Random;
 
 const Vec3 kFieldNed(20.0, 0.0, 45.0);  // µT: 20 north, 0 east, 45 down (dip ≈ 66°)
@@ -27,8 +27,8 @@ TEST(MagHeading, MeasuredHeadingIsTheTrueYawForAnyTiltAndWrongYaw) {
     for (double pitch_deg = -80.0; pitch_deg <= 80.0; pitch_deg += 20.0) {
       for (double yaw_deg = -180.0; yaw_deg < 180.0; yaw_deg += 30.0) {
         for (double error_deg : {-170.0, -45.0, -1.0, 0.0, 3.0, 90.0, 179.0}) {
-          const double roll = roll_deg * kDeg, pitch = pitch_deg * kDeg, yaw = yaw_deg * kDeg;
-          const double wrong_yaw = yaw + error_deg * kDeg;
+          const double roll = roll_deg * kRadPerDeg, pitch = pitch_deg * kRadPerDeg, yaw = yaw_deg * kRadPerDeg;
+          const double wrong_yaw = yaw + error_deg * kRadPerDeg;
           const Quat truth = test::fromYawPitchRoll(yaw, pitch, roll);
           const Quat estimate = test::fromYawPitchRoll(wrong_yaw, pitch, roll);
           const Vec3 mag_b = truth.inverse() * kFieldNed;
@@ -251,7 +251,7 @@ TEST(MagDisturbance, AFieldThatTurnsAndStrengthensWhileTheSensorStaysStillIsStil
   bool flagged = false;
   for (int i = 1; i <= 50; ++i) {
     const double share = i / 50.0;
-    const Vec3 turned = Eigen::AngleAxisd(share * 30.0 * kDeg, Vec3::UnitX()) * field;
+    const Vec3 turned = Eigen::AngleAxisd(share * 30.0 * kRadPerDeg, Vec3::UnitX()) * field;
     d.advance(still);
     flagged = flagged || d.update(Vec3(turned.normalized() * (field.norm() + 5.0 * share)), 1.15, 0.01).norm_jump;
   }

@@ -15,7 +15,7 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 
 NavigationState randomState(test::Random& rng) {
   NavigationState x;
@@ -131,11 +131,11 @@ TEST(MeasurementModels, MagneticHeadingJacobianMatchesNumerical) {
   test::Random rng(6);
   for (int trial = 0; trial < 20; ++trial) {
     const NavigationState x = randomState(rng);
-    const MagneticHeadingModel heading{2.0 * kDeg};
+    const MagneticHeadingModel heading{2.0 * kRadPerDeg};
     // A field 40-75° of dip, seen by the sensor with the heading off by up to 60°.
-    const double dip = (40.0 + 35.0 * rng.uniform(0.0, 1.0)) * kDeg;
+    const double dip = (40.0 + 35.0 * rng.uniform(0.0, 1.0)) * kRadPerDeg;
     const Vec3 field_ned = 50.0 * Vec3(std::cos(dip), 0.0, std::sin(dip));
-    const Quat seen = headingRotation(rng.uniform(-60.0, 60.0) * kDeg) * x.q_nb;
+    const Quat seen = headingRotation(rng.uniform(-60.0, 60.0) * kRadPerDeg) * x.q_nb;
     const Vec3 field_sensor = seen.conjugate() * field_ned;
     expectJacobianMatches<1>(x, [&](const NavigationState& s) { return heading.linearise(s, field_sensor); }, 1.0);
   }
@@ -144,13 +144,13 @@ TEST(MeasurementModels, MagneticHeadingJacobianMatchesNumerical) {
 TEST(MeasurementModels, MagneticHeadingIsTheTurnToTheFieldsNorth) {
   test::Random rng(7);
   const NavigationState x = randomState(rng);
-  const MagneticHeadingModel heading{2.0 * kDeg};
-  const double dip = 65.0 * kDeg;
+  const MagneticHeadingModel heading{2.0 * kRadPerDeg};
+  const double dip = 65.0 * kRadPerDeg;
   const Vec3 field_ned = 50.0 * Vec3(std::cos(dip), 0.0, std::sin(dip));
   // The state's heading 10° short of the field's: the residual turns it by +10°.
-  const Quat truth = headingRotation(10.0 * kDeg) * x.q_nb;
+  const Quat truth = headingRotation(10.0 * kRadPerDeg) * x.q_nb;
   const auto l = heading.linearise(x, truth.conjugate() * field_ned);
-  EXPECT_NEAR(l.residual(0), 10.0 * kDeg, 1e-12);
+  EXPECT_NEAR(l.residual(0), 10.0 * kRadPerDeg, 1e-12);
   // 1 about down; -tan(dip) about the horizontal axis along the field (north, at the truth).
   NavigationState true_state = x;
   true_state.q_nb = truth;

@@ -14,7 +14,7 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 
 constexpr double kDt = 0.01;
 
@@ -31,11 +31,11 @@ TEST(NetTurn, ASwingBackAndForthCountsNothing) {
   // A phone swung in the hand by ±45° once a second, and a walker's sway of ±10° about two
   // axes twice a second, for five minutes, about a tilted mean attitude.
   const double swung = countedOver(300.0, [](double t) {
-    return test::fromYawPitchRoll(0.7, 45.0 * kDeg * std::sin(2.0 * std::numbers::pi * t), 0.2);
+    return test::fromYawPitchRoll(0.7, 45.0 * kRadPerDeg * std::sin(2.0 * std::numbers::pi * t), 0.2);
   });
   const double swayed = countedOver(300.0, [](double t) {
     const double phase = 4.0 * std::numbers::pi * t;
-    return test::fromYawPitchRoll(-1.0 + 10.0 * kDeg * std::sin(phase), 0.1, 10.0 * kDeg * std::cos(phase));
+    return test::fromYawPitchRoll(-1.0 + 10.0 * kRadPerDeg * std::sin(phase), 0.1, 10.0 * kRadPerDeg * std::cos(phase));
   });
   // Over five minutes less than a third of what one quarter turn counts (1.57 rad).
   EXPECT_LT(swung, 0.5);
@@ -51,7 +51,7 @@ TEST(NetTurn, ATurnCountsItsAngle) {
   });
   EXPECT_NEAR(quick, 0.5 * std::numbers::pi, 0.1);
   const double slow = countedOver(60.0, [](double t) {
-    return test::fromYawPitchRoll(0.05 * t + 10.0 * kDeg * std::sin(4.0 * std::numbers::pi * t), 0.0, 0.0);
+    return test::fromYawPitchRoll(0.05 * t + 10.0 * kRadPerDeg * std::sin(4.0 * std::numbers::pi * t), 0.0, 0.0);
   });
   EXPECT_NEAR(slow, 3.0, 0.3);
 }
@@ -62,11 +62,11 @@ TEST(NetTurn, CountsEveryAxisAndBothSignsOfTheQuaternion) {
   double counted = 0.0;
   for (int i = 0; i <= 2000; ++i) {
     const double t = i * kDt;
-    Quat q = test::fromYawPitchRoll(0.0, 0.0, 60.0 * kDeg * std::min(t / 3.0, 1.0));
+    Quat q = test::fromYawPitchRoll(0.0, 0.0, 60.0 * kRadPerDeg * std::min(t / 3.0, 1.0));
     if (i % 2 == 1) q.coeffs() = -q.coeffs();
     counted += turn.update(q, kDt);
   }
-  EXPECT_NEAR(counted, 60.0 * kDeg, 0.1);
+  EXPECT_NEAR(counted, 60.0 * kRadPerDeg, 0.1);
 }
 
 }  // namespace

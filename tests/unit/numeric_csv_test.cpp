@@ -8,6 +8,7 @@
 #include <string>
 
 #include "headingd/files/imu_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "temp_csv_files.hpp"
 
@@ -175,7 +176,7 @@ TEST_F(CsvFiles, MissingFileIsAnError) {
   ASSERT_NE(m, "");
   EXPECT_NE(m.find(path), std::string::npos) << m;
   EXPECT_NE(m.find("cannot open"), std::string::npos) << m;
-  EXPECT_THROW(readMaybeGzipFile(path, kConfigFileLimit), CsvError);
+  EXPECT_THROW(readMaybeGzipFile(path, kConfigFileLimit), FileError);  // a file, not a CSV, failed
 }
 
 TEST_F(CsvFiles, ReadNumericCsvOptionalColumns) {

@@ -14,7 +14,7 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 
 const Vec3 kFieldNed(20.0, 2.0, 45.0);  // µT
 constexpr double kDt = 0.01;             // 100 Hz
@@ -33,7 +33,7 @@ TurnedRun turnThrough(const std::function<Vec3(double)>& field_at, double second
   test::Random rng(seed);
   TurnedRun run;
   GyroFrame frame;
-  const Vec3 rate = 30.0 * kDeg * Vec3(0.3, -0.5, 1.0).normalized();
+  const Vec3 rate = 30.0 * kRadPerDeg * Vec3(0.3, -0.5, 1.0).normalized();
   Quat q_nb = Quat::Identity();
   int counted = 0, quasi_static = 0;
   const int n = static_cast<int>(std::llround(seconds / kDt));
@@ -68,7 +68,8 @@ TEST(QuasiStaticField, AFieldThatTurnsAtConstantStrengthIsNotQuasiStatic) {
   // The field turns about the vertical at 30 deg/s (a magnet turning beside the sensor): its
   // norm stays, so eqs. 33-34 alone would take it; carried through the gyro, its 20 µT of
   // horizontal field sweeps 10.5 µT in a second, a spread of 3 µT about the window's mean.
-  const TurnedRun run = turnThrough([](double t) { return Vec3(headingRotation(30.0 * kDeg * t) * kFieldNed); }, 30.0, 1);
+  const TurnedRun run =
+      turnThrough([](double t) { return Vec3(headingRotation(30.0 * kRadPerDeg * t) * kFieldNed); }, 30.0, 1);
   EXPECT_EQ(run.detector.periods(), 0u);
   EXPECT_EQ(run.quasi_static_share, 0.0);
 }
@@ -119,7 +120,7 @@ TEST(QuasiStaticField, TheEstimatorSkipsAHeldFieldSampleAndCountsThePeriods) {
   test::Random rng(7);
   Estimator est;
   Vec3 held = Vec3::Zero();
-  const Vec3 rate(0.0, 0.0, 30.0 * kDeg);
+  const Vec3 rate(0.0, 0.0, 30.0 * kRadPerDeg);
   Quat q_nb = Quat::Identity();
   const int n = 3000;  // 30 s
   int mag_quasi_static = 0;

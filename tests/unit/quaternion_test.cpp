@@ -9,8 +9,8 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
 using test::kPi;
+using test::kRadPerDeg;
 using test::Random;
 
 // q ⊗ (0, v) as a 4-vector (w, x, y, z), with Eigen's Hamilton product.
@@ -161,7 +161,7 @@ TEST(Quaternion, EulerZyxRecoversYawPitchRollBuiltWithEigen) {
   Random rng(8);
   for (int i = 0; i < 2000; ++i) {
     const double yaw = rng.uniform(-kPi, kPi);
-    const double pitch = rng.uniform(-89.0 * kDeg, 89.0 * kDeg);
+    const double pitch = rng.uniform(-89.0 * kRadPerDeg, 89.0 * kRadPerDeg);
     const double roll = rng.uniform(-kPi, kPi);
     const EulerAngles e = eulerZyx(test::fromYawPitchRoll(yaw, pitch, roll));
     EXPECT_NEAR(test::angleDifference(e.yaw_rad, yaw), 0.0, 1e-9) << yaw << " " << pitch << " " << roll;

@@ -13,7 +13,7 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 
 const Vec3 kFieldNed(20.0, 2.0, 45.0);  // µT
 
@@ -32,7 +32,7 @@ AfterTheTurn turnTheField(Delivery delivery, std::uint32_t seed) {
   EstimatorParams p;
   p.mag_rate_error_time_constant_s = 0.0;  // the observer alone: no integral term
   test::Random rng(seed);
-  const double dt = 0.01, turn_at_s = 60.0, turn = 20.0 * kDeg, tau = p.mag_heading_time_constant_s;
+  const double dt = 0.01, turn_at_s = 60.0, turn = 20.0 * kRadPerDeg, tau = p.mag_heading_time_constant_s;
   const Quat q = Quat(headingRotation(1.0));
   Estimator est(p);
   AfterTheTurn out;
@@ -63,14 +63,16 @@ TEST(SlowMagnetometer, TheHeadingFollowsTheFieldWithItsTimeConstantInSecondsAtAn
     const AfterTheTurn every = turnTheField(Delivery::kEverySample, seed);
     const AfterTheTurn fourth = turnTheField(Delivery::kEveryFourthEpoch, seed);
     const AfterTheTurn held = turnTheField(Delivery::kHeldBetweenReadings, seed);
-    std::printf("seed %u: after one time constant %.2f / %.2f / %.2f deg behind, sigma %.2f / %.2f / %.2f deg "
-                "(every sample / every fourth epoch / held)\n",
-                seed, every.error_after_one_time_constant_rad / kDeg, fourth.error_after_one_time_constant_rad / kDeg,
-                held.error_after_one_time_constant_rad / kDeg, every.sigma_after_one_time_constant_rad / kDeg,
-                fourth.sigma_after_one_time_constant_rad / kDeg, held.sigma_after_one_time_constant_rad / kDeg);
+    std::printf(
+        "seed %u: after one time constant %.2f / %.2f / %.2f deg behind, sigma %.2f / %.2f / %.2f deg "
+        "(every sample / every fourth epoch / held)\n",
+        seed, every.error_after_one_time_constant_rad / kRadPerDeg,
+        fourth.error_after_one_time_constant_rad / kRadPerDeg, held.error_after_one_time_constant_rad / kRadPerDeg,
+        every.sigma_after_one_time_constant_rad / kRadPerDeg, fourth.sigma_after_one_time_constant_rad / kRadPerDeg,
+        held.sigma_after_one_time_constant_rad / kRadPerDeg);
     // A first-order follower is e⁻¹ of the turn behind after one time constant: 7.4°.
     for (const AfterTheTurn& run : {every, fourth, held}) {
-      EXPECT_NEAR(std::abs(run.error_after_one_time_constant_rad), 20.0 * kDeg * std::exp(-1.0), 1.0 * kDeg)
+      EXPECT_NEAR(std::abs(run.error_after_one_time_constant_rad), 20.0 * kRadPerDeg * std::exp(-1.0), 1.0 * kRadPerDeg)
           << "seed " << seed;
     }
     EXPECT_NEAR(fourth.sigma_after_one_time_constant_rad, every.sigma_after_one_time_constant_rad,

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "headingd/core/accel_disturbance.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/core/quaternion.hpp"
 #include "headingd/core/sample_gate.hpp"
 
@@ -20,12 +21,12 @@ inline void PrintTo(MotionLevel level, std::ostream* os) { *os << motionLevelNam
 
 namespace headingd::test {
 
+using core::kRadPerDeg;
 using core::Quat;
 using core::Vec3;
 using core::Vec4;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 class Random {
  public:

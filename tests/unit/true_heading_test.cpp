@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/declination_estimator.hpp"
 #include "headingd/core/gait_mount_yaw.hpp"
 #include "headingd/core/noise_floor.hpp"
@@ -12,8 +13,6 @@
 
 namespace headingd::core {
 namespace {
-
-constexpr double kRad = std::numbers::pi / 180.0;
 
 TEST(NoiseFloor, IsTheQuietestSecondOfTheLastMinute) {
   NoiseFloor floor(1.0);
@@ -45,18 +44,19 @@ TEST(GaitMountYaw, RecoversTheMountingYawFromSteps) {
   for (const double mount_deg : {-40.0, -3.0, 0.0, 3.0, 25.0}) {
     GaitMountYawEstimator gait;
     EXPECT_FALSE(gait.hasEstimate());
-    walk(gait, mount_deg * kRad, 1.2, 60.0);
+    walk(gait, mount_deg * kRadPerDeg, 1.2, 60.0);
     ASSERT_TRUE(gait.hasEstimate());
-    EXPECT_NEAR(gait.mountYawRad() / kRad, mount_deg, 0.2) << mount_deg;
+    EXPECT_NEAR(gait.mountYawRad() / kRadPerDeg, mount_deg, 0.2) << mount_deg;
     // Batch means over 10 s blocks: every block of this noise-free walk gives the same axis.
-    EXPECT_LT(gait.sigmaRad() / kRad, 0.5);
+    EXPECT_LT(gait.sigmaRad() / kRadPerDeg, 0.5);
   }
 }
 
 TEST(GaitMountYaw, DoesNotDependOnTheWalkingDirection) {
   GaitMountYawEstimator gait;
-  for (const double heading_deg : {0.0, 90.0, 180.0, 270.0}) walk(gait, 5.0 * kRad, heading_deg * kRad, 10.0);
-  EXPECT_NEAR(gait.mountYawRad() / kRad, 5.0, 0.2);
+  for (const double heading_deg : {0.0, 90.0, 180.0, 270.0})
+    walk(gait, 5.0 * kRadPerDeg, heading_deg * kRadPerDeg, 10.0);
+  EXPECT_NEAR(gait.mountYawRad() / kRadPerDeg, 5.0, 0.2);
 }
 
 // A trunk that is pitched forward and yaws ±3° at half the step rate while it walks, the
@@ -65,7 +65,7 @@ TEST(GaitMountYaw, DoesNotDependOnTheWalkingDirection) {
 TEST(GaitMountYaw, TiltedYawingTrunkGivesTheMountingYaw) {
   for (const double mount_deg : {0.0, 3.0, -7.0}) {
     GaitMountYawEstimator gait;
-    const Quat mount(Eigen::AngleAxisd(mount_deg * kRad, Vec3::UnitZ()));
+    const Quat mount(Eigen::AngleAxisd(mount_deg * kRadPerDeg, Vec3::UnitZ()));
     const double dt = 0.01, step_hz = 1.9, path_heading = 0.7;
     // Step phase of a cadence that wanders by ±3 % (a fixed cadence would put every 4 s
     // window at one of five step phases, and the windows' leftovers would not average out).
@@ -75,8 +75,8 @@ TEST(GaitMountYaw, TiltedYawingTrunkGivesTheMountingYaw) {
     };
     const auto sensor_at = [&](double t) {
       const double phase = step_phase(t);
-      const double yaw = path_heading + 3.0 * kRad * std::cos(0.5 * phase);
-      const double pitch = (-8.0 + 1.5 * std::sin(phase)) * kRad, roll = 2.0 * kRad * std::sin(0.5 * phase);
+      const double yaw = path_heading + 3.0 * kRadPerDeg * std::cos(0.5 * phase);
+      const double pitch = (-8.0 + 1.5 * std::sin(phase)) * kRadPerDeg, roll = 2.0 * kRadPerDeg * std::sin(0.5 * phase);
       return Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
                   Eigen::AngleAxisd(roll, Vec3::UnitX())) *
              mount;
@@ -93,24 +93,26 @@ TEST(GaitMountYaw, TiltedYawingTrunkGivesTheMountingYaw) {
     ASSERT_TRUE(gait.hasEstimate());
     // The mounting yaw seen on the horizontal plane (what turns the heading): a turn μ about
     // a body axis pitched by 8° appears as atan(tan μ / cos 8°) there.
-    const double horizontal_deg = std::atan2(std::sin(mount_deg * kRad), std::cos(mount_deg * kRad) * std::cos(8.0 * kRad)) / kRad;
-    EXPECT_NEAR(gait.mountYawRad() / kRad, horizontal_deg, 0.05) << mount_deg;
+    const double horizontal_deg =
+        std::atan2(std::sin(mount_deg * kRadPerDeg), std::cos(mount_deg * kRadPerDeg) * std::cos(8.0 * kRadPerDeg)) /
+        kRadPerDeg;
+    EXPECT_NEAR(gait.mountYawRad() / kRadPerDeg, horizontal_deg, 0.05) << mount_deg;
   }
 }
 
 TEST(GaitMountYaw, RestartDropsTheOpenWindowOnly) {
   GaitMountYawEstimator gait;
-  walk(gait, 4.0 * kRad, 0.0, 30.0);
+  walk(gait, 4.0 * kRadPerDeg, 0.0, 30.0);
   const double before = gait.mountYawRad(), seconds = gait.walkingSeconds();
   gait.restart();
-  walk(gait, 40.0 * kRad, 0.0, 3.0);  // shorter than a window: never counts
+  walk(gait, 40.0 * kRadPerDeg, 0.0, 3.0);  // shorter than a window: never counts
   gait.restart();
   EXPECT_DOUBLE_EQ(gait.walkingSeconds(), seconds);
   EXPECT_DOUBLE_EQ(gait.mountYawRad(), before);
 }
 
 TEST(CourseMinusHeading, AveragesOverDirectionsEq51) {
-  CourseMinusHeading estimator(30.0 * kRad, 10);
+  CourseMinusHeading estimator(30.0 * kRadPerDeg, 10);
   AngleEstimate e;
   EXPECT_FALSE(estimator.estimate(&e));
   test::Random rng(7);
@@ -120,13 +122,13 @@ TEST(CourseMinusHeading, AveragesOverDirectionsEq51) {
   const double direction_error[] = {2.0, -2.0, 2.0, -2.0};
   for (int d = 0; d < 4; ++d) {
     for (int j = 0; j < (d + 1) * 20; ++j) {  // unequal numbers of epochs per direction
-      const double course = directions[d] * kRad + rng.normal(0.03);
-      estimator.add(course, course - (6.0 + direction_error[d]) * kRad + rng.normal(0.02), j > 0);
+      const double course = directions[d] * kRadPerDeg + rng.normal(0.03);
+      estimator.add(course, course - (6.0 + direction_error[d]) * kRadPerDeg + rng.normal(0.02), j > 0);
     }
   }
   ASSERT_TRUE(estimator.estimate(&e));
   EXPECT_EQ(estimator.directions(), 4);
-  EXPECT_NEAR(e.value_rad / kRad, 6.0, 0.4);  // 1.15° noise per epoch, ≥ 20 epochs per direction
+  EXPECT_NEAR(e.value_rad / kRadPerDeg, 6.0, 0.4);  // 1.15° noise per epoch, ≥ 20 epochs per direction
   EXPECT_GT(e.sigma_rad, 0.0);
 }
 
@@ -134,10 +136,10 @@ TEST(CourseMinusHeading, AveragesOverDirectionsEq51) {
 // Gauss-Markov with φ = 0.6): n epochs are worth n(1-φ)/(1+φ) independent ones, and the
 // standard error says so; epochs that do not follow each other are taken as independent.
 TEST(CourseMinusHeading, StandardErrorCountsCorrelatedEpochs) {
-  const double sigma = 3.0 * kRad, phi = 0.6;
+  const double sigma = 3.0 * kRadPerDeg, phi = 0.6;
   const int epochs = 400;
   test::Random rng(11);
-  CourseMinusHeading correlated(30.0 * kRad, 10), separate(30.0 * kRad, 10);
+  CourseMinusHeading correlated(30.0 * kRadPerDeg, 10), separate(30.0 * kRadPerDeg, 10);
   double error = rng.normal(sigma);
   for (int j = 0; j < epochs; ++j) {
     error = phi * error + std::sqrt(1.0 - phi * phi) * rng.normal(sigma);
@@ -154,13 +156,13 @@ TEST(CourseMinusHeading, StandardErrorCountsCorrelatedEpochs) {
 }
 
 TEST(FuseAngles, InverseVarianceAcrossPlusMinus180) {
-  const AngleEstimate two[] = {{179.0 * kRad, 1.0 * kRad}, {-179.0 * kRad, 1.0 * kRad}};
+  const AngleEstimate two[] = {{179.0 * kRadPerDeg, 1.0 * kRadPerDeg}, {-179.0 * kRadPerDeg, 1.0 * kRadPerDeg}};
   const AngleEstimate fused = fuseAngles(two);
-  EXPECT_NEAR(std::abs(fused.value_rad) / kRad, 180.0, 1e-9);
-  EXPECT_NEAR(fused.sigma_rad / kRad, 1.0 / std::sqrt(2.0), 1e-9);
-  const AngleEstimate unequal[] = {{10.0 * kRad, 1.0 * kRad}, {20.0 * kRad, 3.0 * kRad}};
+  EXPECT_NEAR(std::abs(fused.value_rad) / kRadPerDeg, 180.0, 1e-9);
+  EXPECT_NEAR(fused.sigma_rad / kRadPerDeg, 1.0 / std::sqrt(2.0), 1e-9);
+  const AngleEstimate unequal[] = {{10.0 * kRadPerDeg, 1.0 * kRadPerDeg}, {20.0 * kRadPerDeg, 3.0 * kRadPerDeg}};
   const AngleEstimate weighted = fuseAngles(unequal);
-  EXPECT_NEAR(weighted.value_rad / kRad, 11.0, 1e-9);  // weights 9:1
+  EXPECT_NEAR(weighted.value_rad / kRadPerDeg, 11.0, 1e-9);  // weights 9:1
   EXPECT_TRUE(std::isinf(fuseAngles({}).sigma_rad));
 }
 

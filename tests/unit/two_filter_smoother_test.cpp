@@ -12,7 +12,7 @@
 namespace headingd::core {
 namespace {
 
-using test::kDeg;
+using test::kRadPerDeg;
 
 TEST(TwoFilterSmoother, TheReversedRecordingRunsTheIntervalsBackwards) {
   std::vector<ImuSample> samples(4);
@@ -46,15 +46,15 @@ AttitudeEstimate estimate(const Quat& q, double sigma_rad) {
 
 TEST(TwoFilterSmoother, TwoAttitudesAreWeighedByTheirCovariances) {
   const Quat q = Quat(Eigen::AngleAxisd(0.3, Vec3(0.2, -0.4, 1.0).normalized()));
-  const Quat turned = headingRotation(10.0 * kDeg) * q;
+  const Quat turned = headingRotation(10.0 * kRadPerDeg) * q;
   // As sure as each other: half way, with half the variance.
   AttitudeEstimate fused = fuseAttitudes(estimate(q, 0.1), estimate(turned, 0.1));
-  EXPECT_NEAR(q.angularDistance(fused.q_nb), 5.0 * kDeg, 1e-9);
-  EXPECT_NEAR(turned.angularDistance(fused.q_nb), 5.0 * kDeg, 1e-9);
+  EXPECT_NEAR(q.angularDistance(fused.q_nb), 5.0 * kRadPerDeg, 1e-9);
+  EXPECT_NEAR(turned.angularDistance(fused.q_nb), 5.0 * kRadPerDeg, 1e-9);
   EXPECT_NEAR(fused.covariance_ned(2, 2), 0.5 * 0.01, 1e-12);
   // Three times the sigma: a tenth of the weight.
   fused = fuseAttitudes(estimate(q, 0.3), estimate(turned, 0.1));
-  EXPECT_NEAR(q.angularDistance(fused.q_nb), 9.0 * kDeg, 1e-9);
+  EXPECT_NEAR(q.angularDistance(fused.q_nb), 9.0 * kRadPerDeg, 1e-9);
   // An invalid one leaves the other.
   AttitudeEstimate none;
   EXPECT_TRUE(fuseAttitudes(none, estimate(turned, 0.1)).q_nb.isApprox(turned));
@@ -109,9 +109,9 @@ TEST(TwoFilterSmoother, TheSmoothedTiltDoesNotInheritABadStart) {
     ++n;
   }
   const double forward_rms = std::sqrt(forward_sum / n), smoothed_rms = std::sqrt(smoothed_sum / n);
-  EXPECT_GT(forward_rms, 10.0 * kDeg);  // the start is a real test
+  EXPECT_GT(forward_rms, 10.0 * kRadPerDeg);  // the start is a real test
   // Measured: 16.1° forward, 7.4° smoothed (the push drags the backward tilt as well).
-  EXPECT_LT(smoothed_rms, 0.6 * forward_rms) << "forward " << forward_rms / kDeg << " deg";
+  EXPECT_LT(smoothed_rms, 0.6 * forward_rms) << "forward " << forward_rms / kRadPerDeg << " deg";
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "headingd/core/angles.hpp"
 #include "wmm_test_support.hpp"
 
 namespace {
@@ -89,9 +90,9 @@ TEST(Wmm2025, ReproducesEveryNoaaTestValue) {
     for (const double d : {f.inclination_deg - v.incl_deg, f.declination_deg - v.decl_deg}) {
       worst_deg = std::max(worst_deg, std::abs(d));
     }
-    constexpr double kDeg = 180.0 / 3.14159265358979323846;
-    for (const double d : {f.inclination_deg - std::atan2(v.z_nT, v.h_nT) * kDeg,
-                           f.declination_deg - std::atan2(v.y_nT, v.x_nT) * kDeg}) {
+    using headingd::core::kDegPerRad;
+    for (const double d : {f.inclination_deg - std::atan2(v.z_nT, v.h_nT) * kDegPerRad,
+                           f.declination_deg - std::atan2(v.y_nT, v.x_nT) * kDegPerRad}) {
       worst_unrounded_deg = std::max(worst_unrounded_deg, std::abs(d));
     }
   }

@@ -14,16 +14,17 @@
 #include <utility>
 #include <vector>
 
-#include "headingd/cli/parse_command_line.hpp"
-#include "headingd/files/output_file.hpp"
 #include "headingd/calib/calibration_error.hpp"
 #include "headingd/calib/ml/ml_calibration.hpp"
 #include "headingd/calib_montecarlo/ks_simulation.hpp"
+#include "headingd/cli/parse_command_line.hpp"
+#include "headingd/core/angles.hpp"
+#include "headingd/files/output_file.hpp"
 
 namespace {
 
 using namespace headingd;
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+using headingd::core::kDegPerRad;
 
 double median(std::vector<double> v) {
   if (v.empty()) return std::nan("");
@@ -172,8 +173,8 @@ int main(int argc, char** argv) {
     try {
       double seconds = 0.0;
       const calib::MlCalibrationResult r = calibrateTimed(run, optionsFor(run, min_coverage), seconds);
-      const double e0 = calib_montecarlo::headingRmseRad(run, r.initial.D, r.initial.offset_uT) * kRadToDeg;
-      const double e1 = calib_montecarlo::headingRmseRad(run, r.D, r.offset_uT) * kRadToDeg;
+      const double e0 = calib_montecarlo::headingRmseRad(run, r.initial.D, r.initial.offset_uT) * kDegPerRad;
+      const double e1 = calib_montecarlo::headingRmseRad(run, r.D, r.offset_uT) * kDegPerRad;
       rmse_init.push_back(e0);
       rmse_ml.push_back(e1);
       ml_seconds.push_back(seconds);
@@ -186,13 +187,14 @@ int main(int argc, char** argv) {
         std::fflush(stdout);  // a long study shows its progress when its output goes to a file
       }
       if (write_csv) {
-        csv << i << ',' << run_seed << ',' << e0 << ',' << e1 << ',' << (e1 < e0 ? 1 : 0) << ',' << r.cost_initial << ','
-            << r.cost_final << ',' << r.iterations << ',' << seconds << ',' << (r.converged ? 1 : 0) << ','
+        csv << i << ',' << run_seed << ',' << e0 << ',' << e1 << ',' << (e1 < e0 ? 1 : 0) << ',' << r.cost_initial
+            << ',' << r.cost_final << ',' << r.iterations << ',' << seconds << ',' << (r.converged ? 1 : 0) << ','
             << (r.initial.D - truth.mag_D).norm() << ',' << (r.D - truth.mag_D).norm() << ','
             << (r.initial.offset_uT - truth.mag_offset_uT).norm() << ',' << (r.offset_uT - truth.mag_offset_uT).norm()
-            << ',' << (r.initial.dip_rad - truth.dip_rad) * kRadToDeg << ',' << (r.dip_rad - truth.dip_rad) * kRadToDeg
-            << ',' << (r.initial.gyro_bias_rad_s - truth.gyro_bias_rad_s).norm() * kRadToDeg << ','
-            << (r.gyro_bias_rad_s - truth.gyro_bias_rad_s).norm() * kRadToDeg << ",\n";
+            << ',' << (r.initial.dip_rad - truth.dip_rad) * kDegPerRad << ','
+            << (r.dip_rad - truth.dip_rad) * kDegPerRad << ','
+            << (r.initial.gyro_bias_rad_s - truth.gyro_bias_rad_s).norm() * kDegPerRad << ','
+            << (r.gyro_bias_rad_s - truth.gyro_bias_rad_s).norm() * kDegPerRad << ",\n";
       }
     } catch (const calib::CalibrationError& e) {
       ++failures;

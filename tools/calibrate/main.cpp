@@ -12,16 +12,17 @@
 #include <string>
 #include <vector>
 
-#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/calib/dip_sign.hpp"
 #include "headingd/calibrate/methods.hpp"
 #include "headingd/calibrate/progress.hpp"
 #include "headingd/calibrate/report.hpp"
+#include "headingd/cli/parse_command_line.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/core/wmm.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/files/imu_csv.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/output_file.hpp"
 
 namespace {
@@ -29,7 +30,7 @@ namespace {
 using namespace headingd;
 using calibrate::describe;
 using calibrate::progress;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using headingd::core::kRadPerDeg;
 
 // Exit codes.
 constexpr int kWritten = 0;
@@ -122,7 +123,7 @@ bool fieldFromArguments(const Arguments& a, calibrate::FieldNorm& field) {
     const core::WorldMagneticModel wmm(core::parseWmmCoefficients(files::readMaybeGzipFile(a.wmm_path, files::kWmmFileLimit), a.wmm_path));
     const auto e = wmm.field({*a.lat, *a.lon, 0.0}, core::decimalYear(y, m, d));
     field.norm_uT = e.f_nT / 1000.0;
-    field.dip_rad = e.inclination_deg * kDeg;
+    field.dip_rad = e.inclination_deg * kRadPerDeg;
     field.source = core::FieldNormSource::kWmm;
     field.detail = wmm.modelName() + describe(" at %.4f N %.4f E on %s", *a.lat, *a.lon, a.date);
   }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "headingd/cli/parse_command_line.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/core/orientation_error.hpp"
 #include "headingd/files/csv_row_reader.hpp"
 #include "headingd/files/numeric_csv.hpp"
@@ -67,14 +68,15 @@ int main(int argc, char** argv) {
       rmse.add(core::orientationError(q_est, q_ref));
     }
     const auto result = rmse.rmse();
-    constexpr double kDeg = 180.0 / std::numbers::pi;
+    using headingd::core::kDegPerRad;
     const std::string reason =
         rmse.count() == 0 ? ",\"reason\":\"no row to score: no reference row has moving = 1 and a finite quaternion\""
                           : "";
-    std::printf("{\"total_rmse_deg\":%s,\"heading_rmse_deg\":%s,\"inclination_rmse_deg\":%s,\"samples\":%zu,"
-                "\"failed_samples\":%zu%s}\n",
-                jsonNumber(result.total_rad * kDeg).c_str(), jsonNumber(result.heading_rad * kDeg).c_str(),
-                jsonNumber(result.inclination_rad * kDeg).c_str(), rmse.count(), failures, reason.c_str());
+    std::printf(
+        "{\"total_rmse_deg\":%s,\"heading_rmse_deg\":%s,\"inclination_rmse_deg\":%s,\"samples\":%zu,"
+        "\"failed_samples\":%zu%s}\n",
+        jsonNumber(result.total_rad * kDegPerRad).c_str(), jsonNumber(result.heading_rad * kDegPerRad).c_str(),
+        jsonNumber(result.inclination_rad * kDegPerRad).c_str(), rmse.count(), failures, reason.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-eval: %s\n", e.what());
     return 1;

@@ -28,12 +28,13 @@
 #include <utility>
 
 #include "headingd/cli/parse_command_line.hpp"
-#include "headingd/files/output_file.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/core/mag_heading_observer.hpp"
 #include "headingd/core/params_toml.hpp"
 #include "headingd/core/two_filter_smoother.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
+#include "headingd/files/output_file.hpp"
 #include "headingd/sim/simulation.hpp"
 #include "headingd/study/anchors.hpp"
 #include "headingd/study/quasi_static_score.hpp"
@@ -44,7 +45,7 @@
 namespace {
 
 using namespace headingd;
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using headingd::core::kDegPerRad;
 
 core::EstimatorParams loadParams(const std::string& config, const std::vector<std::string>& sets) {
   std::string text = config.empty() ? std::string() : files::readMaybeGzipFile(config, files::kConfigFileLimit);
@@ -86,7 +87,7 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
 // The field's dip in a measurement through an attitude; NaN where it gives none (unknown
 // reference, vertical field).
 double dipDeg(const core::MagHeadingMeasurement& m) {
-  return m.valid ? m.dip_rad * kDeg : std::numeric_limits<double>::quiet_NaN();
+  return m.valid ? m.dip_rad * kDegPerRad : std::numeric_limits<double>::quiet_NaN();
 }
 
 void writeTrace(const std::string& path, const study::Recording& r, const core::EstimatorParams& params) {
@@ -140,7 +141,7 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const auto t = core::eulerZyx(r.truth_nb[i]);
     // The published heading (x-axis yaw, or lying down the head's) and the x-axis yaw against
     // the reference's x-axis yaw, plain (no alignment fitted).
-    const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDeg; };
+    const auto wrapped_deg = [](double a) { return std::remainder(a, 2.0 * std::numbers::pi) * kDegPerRad; };
     const auto through_truth = core::measureMagHeading(r.truth_nb[i], r.samples[i].mag_uT, 0.0);
     const auto through_estimate = core::measureMagHeading(o.q_nb, r.samples[i].mag_uT, 0.0);
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -154,25 +155,25 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
         through_truth.valid && through_estimate.valid
             ? wrapped_deg(through_estimate.innovation_rad - through_truth.innovation_rad + vertical_error_rad)
             : nan;
-    std::snprintf(line, sizeof line,
-                  "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
-                  "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
-                  "%d,%d,%d\n",
-                  1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns),
-                  errors[i].inclination_rad * kDeg, errors[i].heading_rad * kDeg, static_cast<int>(o.motion_level),
-                  o.accel_disturbance, o.at_rest ? 1 : 0, o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(),
-                  o.gyro_bias_rad_s.z(), o.mag_disturbed ? 1 : 0, static_cast<unsigned long long>(still_blocks[i]),
-                  r.moving[i] ? 1 : 0, e.roll_rad * kDeg, e.pitch_rad * kDeg, t.roll_rad * kDeg, t.pitch_rad * kDeg,
-                  o.mag_used ? 1 : 0, static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2,
-                  o.heading_sigma_rad * kDeg, o.mag_innovation_rad * kDeg, o.mag_gain, rate_sigmas[i] * kDeg,
-                  o.heading_redefined ? 1 : 0, o.head_height, wrapped_deg(o.heading_rad - t.yaw_rad),
-                  wrapped_deg(o.yaw_rad - t.yaw_rad), 1e3 * o.vertical_rate_correction_rad_s, 1e3 * o.mag_lag_s,
-                  1e3 * o.accel_lag_s, 1e3 * accel_delays[i].first, 1e3 * accel_delays[i].second,
-                  tilt_sigmas[i] * kDeg, o.mag_disturbance.norm_jump ? 1 : 0, o.mag_disturbance.dip_jump ? 1 : 0,
-                  dipDeg(through_estimate), dipDeg(through_truth),
-                  prior_sigmas[i] * kDeg, dip_deviations[i] * kDeg, field_error_deg, tilt_error_deg,
-                  vertical_error_rad * kDeg, 1e3 * shown_rates[i], 1e3 * shown_rate_sigmas[i], 1e3 * true_rate_error,
-                  o.mag_quasi_static ? 1 : 0, o.qsf_mag_update_applied ? 1 : 0, o.mau_applied ? 1 : 0);
+    std::snprintf(
+        line, sizeof line,
+        "%.4f,%.4f,%.4f,%d,%.4g,%d,%.5f,%.5f,%.5f,%d,%llu,%d,%.3f,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.4f,%.3g,%.4f,"
+        "%d,%.4f,%.3f,%.3f,%.4f,%.2f,%.2f,%.2f,%.2f,%.4f,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
+        "%d,%d,%d\n",
+        1e-9 * static_cast<double>(r.samples[i].t_ns - r.samples[0].t_ns), errors[i].inclination_rad * kDegPerRad,
+        errors[i].heading_rad * kDegPerRad, static_cast<int>(o.motion_level), o.accel_disturbance, o.at_rest ? 1 : 0,
+        o.gyro_bias_rad_s.x(), o.gyro_bias_rad_s.y(), o.gyro_bias_rad_s.z(), o.mag_disturbed ? 1 : 0,
+        static_cast<unsigned long long>(still_blocks[i]), r.moving[i] ? 1 : 0, e.roll_rad * kDegPerRad,
+        e.pitch_rad * kDegPerRad, t.roll_rad * kDegPerRad, t.pitch_rad * kDegPerRad, o.mag_used ? 1 : 0,
+        static_cast<unsigned long long>(restores[i]), o.gravity_noise_m_s2, o.heading_sigma_rad * kDegPerRad,
+        o.mag_innovation_rad * kDegPerRad, o.mag_gain, rate_sigmas[i] * kDegPerRad, o.heading_redefined ? 1 : 0,
+        o.head_height, wrapped_deg(o.heading_rad - t.yaw_rad), wrapped_deg(o.yaw_rad - t.yaw_rad),
+        1e3 * o.vertical_rate_correction_rad_s, 1e3 * o.mag_lag_s, 1e3 * o.accel_lag_s, 1e3 * accel_delays[i].first,
+        1e3 * accel_delays[i].second, tilt_sigmas[i] * kDegPerRad, o.mag_disturbance.norm_jump ? 1 : 0,
+        o.mag_disturbance.dip_jump ? 1 : 0, dipDeg(through_estimate), dipDeg(through_truth),
+        prior_sigmas[i] * kDegPerRad, dip_deviations[i] * kDegPerRad, field_error_deg, tilt_error_deg,
+        vertical_error_rad * kDegPerRad, 1e3 * shown_rates[i], 1e3 * shown_rate_sigmas[i], 1e3 * true_rate_error,
+        o.mag_quasi_static ? 1 : 0, o.qsf_mag_update_applied ? 1 : 0, o.mau_applied ? 1 : 0);
     out << line;
   }
   files::writeWholeOutputFile(path, out.str());
@@ -263,8 +264,8 @@ void printOpenings(const std::vector<Row>& rows, const std::vector<double>& rate
       std::printf("%-46s %7.1f", row.name.c_str(), row.rate_hz);
       for (std::size_t f = 0; f < names.size(); ++f) {
         const study::RunScore& s = f == 0 ? row.score : row.anchors[f - 1];
-        const std::array<double, 2> v = {s.aligned_opening_rmse.heading_rad * kDeg,
-                                         s.aligned_after_opening_rmse.heading_rad * kDeg};
+        const std::array<double, 2> v = {s.aligned_opening_rmse.heading_rad * kDegPerRad,
+                                         s.aligned_after_opening_rmse.heading_rad * kDegPerRad};
         std::printf(" | %6.2f %6.2f", v[0], v[1]);
         for (int k = 0; k < 2; ++k) {
           if (std::isnan(v[k])) continue;  // a run shorter than its opening
@@ -301,8 +302,9 @@ void printSideBySide(const std::vector<Row>& rows, const std::vector<double>& ra
       std::printf("%-46s %7.1f", row.name.c_str(), row.rate_hz);
       for (std::size_t f = 0; f < names.size(); ++f) {
         const study::RunScore& s = f == 0 ? row.score : row.anchors[f - 1];
-        const std::array<double, 4> v = {s.rmse.total_rad * kDeg, s.aligned_rmse.total_rad * kDeg,
-                                         s.aligned_rmse.heading_rad * kDeg, s.aligned_rmse.inclination_rad * kDeg};
+        const std::array<double, 4> v = {s.rmse.total_rad * kDegPerRad, s.aligned_rmse.total_rad * kDegPerRad,
+                                         s.aligned_rmse.heading_rad * kDegPerRad,
+                                         s.aligned_rmse.inclination_rad * kDegPerRad};
         std::printf(" | %6.2f %6.2f/%6.2f/%6.2f", v[0], v[1], v[2], v[3]);
         for (int k = 0; k < 4; ++k) sums[f][k] += v[k];
       }
@@ -420,7 +422,7 @@ int main(int argc, char** argv) {
         if (rate > 0.0) c.imu_rate_hz = rate;
         c.accel_lag_s = accel_lag_s;
         r = study::fromSimulation(sim::simulate(c, *wmm), scenario + " seed " + std::to_string(c.seed));
-        if (initial_error_deg != 0.0) study::startOffBy(r, initial_error_deg / kDeg, c.seed);
+        if (initial_error_deg != 0.0) study::startOffBy(r, initial_error_deg / kDegPerRad, c.seed);
         if (!wmm_reference) r.reference_field_uT = 0.0;
       } else {
         r = study::readBroadTrial(paths[source]);
@@ -429,7 +431,7 @@ int main(int argc, char** argv) {
         }
         if (reference_field.size() == 2) {
           r.reference_field_uT = reference_field[0];
-          r.reference_inclination_rad = reference_field[1] / kDeg;
+          r.reference_inclination_rad = reference_field[1] / kDegPerRad;
         }
       }
       std::vector<double> sigmas, mag_lags;
@@ -460,10 +462,19 @@ int main(int argc, char** argv) {
       }
       const double coverage =
           study::headingCoverage(r, *simulate ? est : study::alignedEstimates(r, est), sigmas, 2.0);
-      rows[job] = {r.name, r.rate_hz, study::score(r, est), study::scoreEpisode(r, est, settle_s, 1.0 / kDeg),
-                   coverage, {}, {}, 0.0, {}, {}, counters,
-                   r.size() > 1 ? 1e-9 * static_cast<double>(r.samples.back().t_ns - r.samples.front().t_ns) / 60.0
-                                : 0.0};
+      rows[job] = {
+          r.name,
+          r.rate_hz,
+          study::score(r, est),
+          study::scoreEpisode(r, est, settle_s, 1.0 / kDegPerRad),
+          coverage,
+          {},
+          {},
+          0.0,
+          {},
+          {},
+          counters,
+          r.size() > 1 ? 1e-9 * static_cast<double>(r.samples.back().t_ns - r.samples.front().t_ns) / 60.0 : 0.0};
       for (const auto& a : anchors) rows[job].anchors.push_back(study::score(r, study::runAnchor(a, r)));
       if (quasi_static) {
         rows[job].mag_qsf = study::scoreQuasiStatic(r, mag_qsf, mag_used);
@@ -490,17 +501,18 @@ int main(int argc, char** argv) {
         const auto& s = row.score;
         const auto& e = row.episode;
         std::printf("%-46s %7.1f | %6.2f %6.2f %6.2f | %6.2f %6.2f %6.2f | %7.2f | %7.2f %7.2f %7.2f %7.1f | %6.1f\n",
-                    row.name.c_str(), row.rate_hz, s.rmse.total_rad * kDeg, s.rmse.heading_rad * kDeg,
-                    s.rmse.inclination_rad * kDeg, s.aligned_rmse.total_rad * kDeg, s.aligned_rmse.heading_rad * kDeg,
-                    s.aligned_rmse.inclination_rad * kDeg, s.max_inclination_rad * kDeg,
-                    e.inclination_rmse_rad * kDeg, e.max_inclination_rad * kDeg, e.max_inclination_after_rad * kDeg,
-                    e.settle_time_s, 100.0 * row.heading_2sigma);
+                    row.name.c_str(), row.rate_hz, s.rmse.total_rad * kDegPerRad, s.rmse.heading_rad * kDegPerRad,
+                    s.rmse.inclination_rad * kDegPerRad, s.aligned_rmse.total_rad * kDegPerRad,
+                    s.aligned_rmse.heading_rad * kDegPerRad, s.aligned_rmse.inclination_rad * kDegPerRad,
+                    s.max_inclination_rad * kDegPerRad, e.inclination_rmse_rad * kDegPerRad,
+                    e.max_inclination_rad * kDegPerRad, e.max_inclination_after_rad * kDegPerRad, e.settle_time_s,
+                    100.0 * row.heading_2sigma);
         sum_coverage += row.heading_2sigma;
-        sum_tot += s.rmse.total_rad * kDeg;
-        sum_incl += s.rmse.inclination_rad * kDeg;
-        sum_atot += s.aligned_rmse.total_rad * kDeg;
-        worst_max = std::max(worst_max, e.max_inclination_rad * kDeg);
-        worst_after = std::max(worst_after, e.max_inclination_after_rad * kDeg);
+        sum_tot += s.rmse.total_rad * kDegPerRad;
+        sum_incl += s.rmse.inclination_rad * kDegPerRad;
+        sum_atot += s.aligned_rmse.total_rad * kDegPerRad;
+        worst_max = std::max(worst_max, e.max_inclination_rad * kDegPerRad);
+        worst_after = std::max(worst_after, e.max_inclination_after_rad * kDegPerRad);
         worst_settle = std::max(worst_settle, e.settle_time_s);
         ++n;
       }

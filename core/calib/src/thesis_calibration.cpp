@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::calib {
 
 namespace {
@@ -19,7 +21,7 @@ constexpr double kPi = std::numbers::pi;
 
 std::vector<Face> findSixFaces(std::span<const StaticSegment> segments, double max_tilt_deg) {
   std::array<std::optional<Face>, 6> best;
-  const double cos_max = std::cos(max_tilt_deg * kPi / 180.0);
+  const double cos_max = std::cos(max_tilt_deg * core::kRadPerDeg);
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const Vec3& a = segments[i].accel_mean;
     const double n = a.norm();
@@ -88,8 +90,8 @@ GyroScaleResult gyroScaleFromTurns(std::span<const core::ImuSample> samples, std
     const auto angle = [](const Vec3& u, const Vec3& v) {
       return std::atan2(u.cross(v).norm(), u.dot(v));
     };
-    if (angle(a.accel_mean, b.accel_mean) > 3.0 * kPi / 180.0) continue;
-    if (a.mag_mean.norm() > 0.0 && angle(a.mag_mean, b.mag_mean) > 5.0 * kPi / 180.0) continue;
+    if (angle(a.accel_mean, b.accel_mean) > 3.0 * core::kRadPerDeg) continue;
+    if (a.mag_mean.norm() > 0.0 && angle(a.mag_mean, b.mag_mean) > 5.0 * core::kRadPerDeg) continue;
     Vec3 integral = Vec3::Zero();
     for (std::size_t i = a.end; i < b.begin; ++i) integral += (samples[i].gyro_rad_s - bias) * dt;
     int axis = 0;

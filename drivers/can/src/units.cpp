@@ -2,6 +2,8 @@
 
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::can {
 namespace {
 
@@ -11,7 +13,7 @@ struct UnitEntry {
   double factor_to_si;
 };
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kRadPerDeg;
 constexpr double kStandardGravity = 9.80665;  // m/s², CGPM 1901
 
 // Spellings seen in vendor DBC files; whitespace around the string is ignored by the caller.
@@ -19,15 +21,15 @@ constexpr UnitEntry kUnits[] = {
     {Quantity::angular_rate, "rad/s", 1.0},
     {Quantity::angular_rate, "rad/sec", 1.0},
     {Quantity::angular_rate, "mrad/s", 1e-3},
-    {Quantity::angular_rate, "deg/s", kDeg},
-    {Quantity::angular_rate, "deg/sec", kDeg},
-    {Quantity::angular_rate, "degree/s", kDeg},
-    {Quantity::angular_rate, "degrees/s", kDeg},
-    {Quantity::angular_rate, "dps", kDeg},
-    {Quantity::angular_rate, "\xC2\xB0/s", kDeg},    // °/s
-    {Quantity::angular_rate, "\xC2\xB0/sec", kDeg},  // °/sec
-    {Quantity::angular_rate, "\xB0/s", kDeg},        // °/s in Latin-1, as older DBC editors write it
-    {Quantity::angular_rate, "mdps", 1e-3 * kDeg},
+    {Quantity::angular_rate, "deg/s", kRadPerDeg},
+    {Quantity::angular_rate, "deg/sec", kRadPerDeg},
+    {Quantity::angular_rate, "degree/s", kRadPerDeg},
+    {Quantity::angular_rate, "degrees/s", kRadPerDeg},
+    {Quantity::angular_rate, "dps", kRadPerDeg},
+    {Quantity::angular_rate, "\xC2\xB0/s", kRadPerDeg},    // °/s
+    {Quantity::angular_rate, "\xC2\xB0/sec", kRadPerDeg},  // °/sec
+    {Quantity::angular_rate, "\xB0/s", kRadPerDeg},        // °/s in Latin-1, as older DBC editors write it
+    {Quantity::angular_rate, "mdps", 1e-3 * kRadPerDeg},
     {Quantity::acceleration, "m/s^2", 1.0},
     {Quantity::acceleration, "m/s2", 1.0},
     {Quantity::acceleration, "m/s**2", 1.0},

@@ -5,7 +5,7 @@
 #include "headingd/nmea/comment_filter.hpp"
 #include "headingd/nmea/parser.hpp"
 #include "headingd/nmea/gps_observation_from_fix.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 
 namespace headingd::files {
 namespace {

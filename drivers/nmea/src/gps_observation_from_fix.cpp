@@ -3,12 +3,13 @@
 #include <chrono>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/wmm.hpp"
 
 namespace headingd::nmea {
 namespace {
 
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+using core::kRadPerDeg;
 
 // Decimal year of a UTC instant, for the magnetic model (a day's resolution is plenty).
 double decimalYearOfUtc(std::int64_t utc_ns) {

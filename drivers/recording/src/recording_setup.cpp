@@ -8,7 +8,7 @@
 #include "headingd/core/params_toml.hpp"
 #include "headingd/core/toml_document.hpp"
 #include "headingd/core/toml_table_reader.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/recording/recording_format.hpp"
 
 namespace headingd::recording {

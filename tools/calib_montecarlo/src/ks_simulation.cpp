@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/imu_model.hpp"
 #include "headingd/sim/rng.hpp"
 
@@ -17,7 +18,7 @@ using core::Quat;
 using core::Vec3;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using core::kRadPerDeg;
 constexpr double kRateHz = 100.0;
 
 // A ramp 0 → 1 over s ∈ [0, 1] with zero rate at both ends: the turn starts and ends at rest.
@@ -56,7 +57,7 @@ const char* variantName(KsVariant v) {
 KsRun simulateKokSchonRun(KsVariant variant, std::uint64_t seed, KsNoiseScale noise) {
   KsRun run;
   const double field = kLinkopingFieldNorm_uT;
-  const double dip = kLinkopingDip_deg * kDeg;
+  const double dip = kLinkopingDip_deg * kRadPerDeg;
   const Vec3 field_ned = field * Vec3(std::cos(dip), 0.0, std::sin(dip));
   const Vec3 gravity_ned(0.0, 0.0, kGravity_m_s2);
   run.truth.field_norm_uT = field;
@@ -70,11 +71,11 @@ KsRun simulateKokSchonRun(KsVariant variant, std::uint64_t seed, KsNoiseScale no
   accel.noise_sigma = noise.factor * sigmaFromTable(draw, 1e-3, 1e-1, as_sigma);
   mag.noise_sigma = noise.factor * field * sigmaFromTable(draw, 1e-3, 1e-1, as_sigma);
   // δω ~ U(-1, 1) per axis, read as °/s as the simulator's consumer grade does.
-  gyro.offset_half_width = Vec3::Constant(1.0 * kDeg);
+  gyro.offset_half_width = Vec3::Constant(1.0 * kRadPerDeg);
   // D_diag ~ U(0.5, 1.5), ζ, η, ρ ~ U(-30°, 30°), ψ, θ, φ ~ U(-10°, 10°), o ~ U(-1, 1)·F.
   mag.scale_half_width = 0.5;
-  mag.skew_half_width_rad = 30.0 * kDeg;
-  mag.rotation_half_width_rad = 10.0 * kDeg;
+  mag.skew_half_width_rad = 30.0 * kRadPerDeg;
+  mag.rotation_half_width_rad = 10.0 * kRadPerDeg;
   mag.offset_half_width = Vec3::Constant(field);
   sim::TriadSensor gyro_sensor(gyro, kRateHz, sim::Rng::stream(seed, 2));
   sim::TriadSensor accel_sensor(accel, kRateHz, sim::Rng::stream(seed, 3));
@@ -89,8 +90,8 @@ KsRun simulateKokSchonRun(KsVariant variant, std::uint64_t seed, KsNoiseScale no
   // Where the sensor rests: any heading, tilted a little (a hand, a table).
   sim::Rng pose = sim::Rng::stream(seed, 5);
   const Quat q_start(Eigen::AngleAxisd(pose.uniform(-kPi, kPi), Vec3::UnitZ()) *
-                     Eigen::AngleAxisd(pose.uniform(-10.0, 10.0) * kDeg, Vec3::UnitY()) *
-                     Eigen::AngleAxisd(pose.uniform(-10.0, 10.0) * kDeg, Vec3::UnitX()));
+                     Eigen::AngleAxisd(pose.uniform(-10.0, 10.0) * kRadPerDeg, Vec3::UnitY()) *
+                     Eigen::AngleAxisd(pose.uniform(-10.0, 10.0) * kRadPerDeg, Vec3::UnitX()));
 
   const std::size_t still = 100;
   const std::size_t rotating = variant == KsVariant::kShort ? 300 : variant == KsVariant::kLong ? 2900 : 29900;

@@ -8,11 +8,12 @@
 #include "headingd/calibrate/method_support.hpp"
 #include "headingd/calibrate/methods.hpp"
 #include "headingd/calibrate/progress.hpp"
+#include "headingd/core/angles.hpp"
 
 namespace headingd::calibrate {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kRadPerDeg;
 
 }  // namespace
 
@@ -48,9 +49,9 @@ void calibrateEllipsoid(const Recording& rec, FieldNorm& field, core::ImuCalibra
   const Eigen::AngleAxisd misalignment(init.misalignment);
   progress("coverage %.0f %%, residual %.2f uT rms, condition %.0f; misalignment %.2f deg, dip %.2f deg",
            100 * init.ellipsoid_coverage, init.ellipsoid_residual_rms_uT, init.ellipsoid_condition_number,
-           misalignment.angle() / kDeg, init.dip_rad / kDeg);
+           misalignment.angle() / kRadPerDeg, init.dip_rad / kRadPerDeg);
   report.notes.push_back(describe("misalignment to the inertial axes %.2f deg (K&S eq. 27, rms residual %.4f)",
-                                  misalignment.angle() / kDeg, init.misalignment_rms, ""));
+                                  misalignment.angle() / kRadPerDeg, init.misalignment_rms, ""));
   if (init.misalignment_sign_chosen) {
     report.notes.push_back(std::string("misalignment: the best minimum of eq. 27 had the dip sign the place rules "
                                        "out; the best of sign ") + calib::dipSignName(rec.dip_sign) + " was taken");

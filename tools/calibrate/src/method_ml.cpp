@@ -9,11 +9,12 @@
 #include "headingd/calibrate/method_support.hpp"
 #include "headingd/calibrate/methods.hpp"
 #include "headingd/calibrate/progress.hpp"
+#include "headingd/core/angles.hpp"
 
 namespace headingd::calibrate {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kRadPerDeg;
 
 calib::MlGradient gradientNamed(const std::string& name) {
   return name == "jets"      ? calib::MlGradient::kAutomatic
@@ -39,7 +40,7 @@ void calibrateMl(const Recording& rec, const MlSettings& ml, FieldNorm& field, c
   progress("maximum likelihood (Kok & Schon Algorithm 1) on %zu samples (every %zu. in the likelihood); dip sign %s",
            rec.samples.size(), o.decimation, calib::dipSignName(rec.dip_sign));
   calib::MlProblem problem = calib::prepareMaximumLikelihood(rec.samples, o);
-  progress("initial estimate (step 1): dip %.2f deg, %d misalignment minima%s", problem.initial.dip_rad / kDeg,
+  progress("initial estimate (step 1): dip %.2f deg, %d misalignment minima%s", problem.initial.dip_rad / kRadPerDeg,
            problem.initial.misalignment_minima,
            problem.initial.misalignment_sign_chosen ? ", the best one refused for its dip sign" : "");
   const auto ml_start = std::chrono::steady_clock::now();

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "headingd/calibrate/svg_plot.hpp"
+#include "headingd/core/angles.hpp"
 #include "headingd/files/output_file.hpp"
 
 namespace headingd::calibrate {
@@ -115,7 +116,7 @@ void writeReport(const std::string& dir, const ReportInput& in) {
   h << "</td></tr><tr><th>o [uT]</th><td>[" << fmt("%.3f", m.offset_uT.x()) << ", " << fmt("%.3f", m.offset_uT.y())
     << ", " << fmt("%.3f", m.offset_uT.z()) << "]</td></tr><tr><th>field norm</th><td>" << fmt("%.3f", m.field_norm_uT)
     << " uT (" << core::fieldNormSourceName(m.field_norm_source) << ": " << m.field_norm_detail << ")</td></tr>";
-  if (m.dip_rad) h << "<tr><th>dip</th><td>" << fmt("%.2f", *m.dip_rad * 180.0 / std::numbers::pi) << " deg</td></tr>";
+  if (m.dip_rad) h << "<tr><th>dip</th><td>" << fmt("%.2f", *m.dip_rad * core::kDegPerRad) << " deg</td></tr>";
   h << "</table>\n";
   if (!in.notes.empty()) {
     h << "<ul>";

@@ -9,11 +9,11 @@
 
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
-#include "headingd/core/mag_calibration_fit.hpp"
+#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/core/toml_document.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
-#include "headingd/files/numeric_csv.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/lcm_export/lcm_log_writer.hpp"
 #include "headingd/recording/recording_format.hpp"
 #include "headingd/recording/recording_reader.hpp"

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/files/decimal_number.hpp"
 
 namespace headingd::replay {
@@ -14,7 +15,7 @@ namespace {
 constexpr std::size_t kBufferBytes = 1 << 16;
 // Longer than any row: 15 fields of at most ~330 characters each ("%.6f" of DBL_MAX).
 constexpr std::size_t kMaxRowBytes = 8192;
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 
 char* put(char* p, std::string_view text) {
   std::memcpy(p, text.data(), text.size());
@@ -65,27 +66,27 @@ void ReplayCsvWriter::write(std::int64_t t_ns, const core::HeadingOutput& h) {
     }
     for (const double angle : {euler.roll_rad, euler.pitch_rad, euler.yaw_rad}) {
       *p++ = ',';
-      p = putFixed(p, angle * kDeg, 6);
+      p = putFixed(p, angle * kDegPerRad, 6);
     }
     if (with_gps_) {
       for (const double angle : {h.heading_mag_rad, h.declination_rad, h.declination_sigma_rad}) {
         *p++ = ',';
-        p = putFixed(p, angle * kDeg, 6);
+        p = putFixed(p, angle * kDegPerRad, 6);
       }
       *p++ = ',';
       p = put(p, core::declinationSourceName(h.declination_sources));
       for (const double angle : {h.mount_yaw_rad, h.heading_true_rad}) {
         *p++ = ',';
-        p = putFixed(p, angle * kDeg, 6);
+        p = putFixed(p, angle * kDegPerRad, 6);
       }
       p = put(p, e.mag_disturbed ? ",1" : ",0");
       for (const double sigma : {h.heading_mag_sigma_rad, h.heading_true_sigma_rad}) {
         *p++ = ',';
-        p = putFixed(p, sigma * kDeg, 6);
+        p = putFixed(p, sigma * kDegPerRad, 6);
       }
     } else {
       *p++ = ',';
-      p = putFixed(p, h.heading_mag_sigma_rad * kDeg, 6);
+      p = putFixed(p, h.heading_mag_sigma_rad * kDegPerRad, 6);
     }
     *p++ = '\n';
   }

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::sim {
 
 CarryPose carryPose(const CarrySpec& carry, const GaitParams& gait, double stride_phase_rad) {
-  constexpr double kDeg = std::numbers::pi / 180.0;
+  using core::kRadPerDeg;
   const double walk_speed = gaitParams(Activity::kWalking).speed_mps;
   const double run_speed = gaitParams(Activity::kRunning).speed_mps;
   // 0 standing .. 1 at walking speed; then 0 .. 1 from walking to running speed.
@@ -17,7 +19,7 @@ CarryPose carryPose(const CarrySpec& carry, const GaitParams& gait, double strid
   const double walk_deg = carry.walk_mean_deg + carry.walk_amplitude_deg * swing;
   const double run_deg = carry.run_mean_deg + carry.run_amplitude_deg * swing;
   CarryPose pose;
-  pose.limb_angle_rad = w * (walk_deg + r * (run_deg - walk_deg)) * kDeg;
+  pose.limb_angle_rad = w * (walk_deg + r * (run_deg - walk_deg)) * kRadPerDeg;
   const core::Quat q_b_limb(Eigen::AngleAxisd(pose.limb_angle_rad, core::Vec3::UnitY()));
   pose.q_b_sensor = (q_b_limb * carry.q_limb_sensor).normalized();
   pose.offset_body_m = carry.pivot_body_m + q_b_limb * carry.sensor_limb_m;

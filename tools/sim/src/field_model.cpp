@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/gait.hpp"
 
 namespace headingd::sim {
@@ -10,7 +11,7 @@ namespace headingd::sim {
 namespace {
 using core::Vec3;
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using core::kRadPerDeg;
 // Offsets and the spatial field fade in and out over this time at a phase change (walking
 // in through a door).
 constexpr double kBlendS = 2.0;
@@ -19,7 +20,7 @@ constexpr int kSpatialModes = 6;
 
 FieldModel::FieldModel(const Scenario& scenario, const core::MagneticFieldElements& wmm, double anomaly_deg, Rng rng)
     : scenario_(scenario),
-      earth_ned_uT_(core::headingRotation(anomaly_deg * kDeg) * core::magneticFieldNed_uT(wmm)),
+      earth_ned_uT_(core::headingRotation(anomaly_deg * kRadPerDeg) * core::magneticFieldNed_uT(wmm)),
       declination_deg_(wmm.declination_deg + anomaly_deg) {
   // Per phase: the given offset plus a seeded one of the given size.
   for (const Phase& p : scenario.phases) {

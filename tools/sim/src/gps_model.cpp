@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::sim {
 
 namespace {
@@ -12,7 +14,7 @@ using core::Vec3;
 constexpr double kPi = std::numbers::pi;
 
 double courseDeg(double north, double east) {
-  const double c = std::atan2(east, north) * 180.0 / kPi;
+  const double c = std::atan2(east, north) * core::kDegPerRad;
   return c < 0.0 ? c + 360.0 : (c >= 360.0 ? c - 360.0 : c);
 }
 

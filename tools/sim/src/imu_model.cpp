@@ -1,11 +1,12 @@
 #include "headingd/sim/imu_model.hpp"
 
-#include "headingd/sim/phone_imu.hpp"
-
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "headingd/core/angles.hpp"
+#include "headingd/sim/phone_imu.hpp"
 
 namespace headingd::sim {
 
@@ -14,7 +15,7 @@ namespace {
 using core::Mat3;
 using core::Vec3;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using core::kRadPerDeg;
 constexpr double kMilliG = 9.80665e-3;  // m/s² per mg
 
 // Sources of the defaults:
@@ -38,10 +39,10 @@ TriadErrorParams consumerGyro() {
   // of RRW; per √s the Allan curve would have no bias-instability floor at all).
   p.bias_walk_density = Vec3(0.00158, 0.00142, 0.00157) / 60.0;
   // [K&S] δω ~ U(-1, 1) per axis; the table prints no unit, read as °/s.
-  p.offset_half_width = Vec3::Constant(1.0 * kDeg);
+  p.offset_half_width = Vec3::Constant(1.0 * kRadPerDeg);
   p.scale_half_width = 0.005;             // [ours] ±0.5 %
-  p.skew_half_width_rad = 0.2 * kDeg;     // [ours]
-  p.rotation_half_width_rad = 0.2 * kDeg; // [ours]
+  p.skew_half_width_rad = 0.2 * kRadPerDeg;      // [ours]
+  p.rotation_half_width_rad = 0.2 * kRadPerDeg;  // [ours]
   return p;
 }
 
@@ -55,8 +56,8 @@ TriadErrorParams consumerAccel() {
   p.markov_time_s = Vec3(18.16, 48.05, 197.2);
   p.offset_half_width = Vec3::Constant(0.02);  // [ours] ±2 mg residual offset
   p.scale_half_width = 0.005;                   // [ours]
-  p.skew_half_width_rad = 0.2 * kDeg;           // [ours]
-  p.rotation_half_width_rad = 0.2 * kDeg;       // [ours]
+  p.skew_half_width_rad = 0.2 * kRadPerDeg;     // [ours]
+  p.rotation_half_width_rad = 0.2 * kRadPerDeg;  // [ours]
   return p;
 }
 
@@ -67,8 +68,8 @@ TriadErrorParams consumerMag(double field_uT) {
   p.noise_sigma = Vec3::Constant(std::sqrt(1e-3) * field_uT);
   p.offset_half_width = Vec3::Constant(0.02 * field_uT);  // [ours] residual hard iron, ~1 µT
   p.scale_half_width = 0.005;                               // [ours] residual soft iron
-  p.skew_half_width_rad = 0.2 * kDeg;                       // [ours]
-  p.rotation_half_width_rad = 0.5 * kDeg;                   // [ours] magnetometer to IMU axes
+  p.skew_half_width_rad = 0.2 * kRadPerDeg;                 // [ours]
+  p.rotation_half_width_rad = 0.5 * kRadPerDeg;             // [ours] magnetometer to IMU axes
   return p;
 }
 
@@ -79,8 +80,8 @@ TriadErrorParams consumerMag(double field_uT) {
 // parts give (MAGYQ's 2014 phone: 241 deg/h). Everything else as consumer.
 ImuErrorParams memsErrors(double field_uT) {
   ImuErrorParams e{consumerGyro(), consumerAccel(), consumerMag(field_uT)};
-  e.gyro.noise_density = Vec3::Constant(0.015 * kDeg);
-  e.gyro.markov_sigma = Vec3::Constant(20.0 / 3600.0 * kDeg);
+  e.gyro.noise_density = Vec3::Constant(0.015 * kRadPerDeg);
+  e.gyro.markov_sigma = Vec3::Constant(20.0 / 3600.0 * kRadPerDeg);
   e.accel.noise_density = Vec3::Constant(0.2 * kMilliG);
   e.mag.noise_sigma = Vec3::Constant(0.6);
   return e;
@@ -92,8 +93,8 @@ TriadErrorParams uncalibratedMag(double field_uT) {
   // ψ, θ, φ ~ U(-10°, 10°), o ~ U(-1, 1) in units of the field norm.
   p.offset_half_width = Vec3::Constant(field_uT);
   p.scale_half_width = 0.5;
-  p.skew_half_width_rad = 30.0 * kDeg;
-  p.rotation_half_width_rad = 10.0 * kDeg;
+  p.skew_half_width_rad = 30.0 * kRadPerDeg;
+  p.rotation_half_width_rad = 10.0 * kRadPerDeg;
   return p;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/rng.hpp"
 
 namespace headingd::sim {
@@ -15,14 +16,14 @@ using core::Quat;
 using core::Vec3;
 
 constexpr double kG = 9.80665;
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+using core::kDegPerRad;
 
 // Stream ids for the motion draws (independent of simulation.cpp's sensor streams).
 enum MotionStream : std::uint64_t { kShake = 101, kHandheld, kSlowRotation, kAttitude };
 
 OrientationKeyframe keyframe(double t_s, const Quat& q) {
   const core::EulerAngles e = core::eulerZyx(q);
-  return {t_s, e.roll_rad * kRadToDeg, e.pitch_rad * kRadToDeg, e.yaw_rad * kRadToDeg};
+  return {t_s, e.roll_rad * kDegPerRad, e.pitch_rad * kDegPerRad, e.yaw_rad * kDegPerRad};
 }
 
 // The time of the next keyframe, step_s after t_s, but never past end_s and never leaving a

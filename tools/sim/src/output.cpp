@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/sim/nmea_writer.hpp"
 
@@ -12,9 +13,9 @@ namespace headingd::sim {
 
 namespace {
 
+using core::kDegPerRad;
 using core::Quat;
 using core::Vec3;
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 // Appends text without arguments as it is: printf would read '%' in it, and Debian's
 // -Werror=format-security (tools/scripts/build-deb.sh) rejects a non-literal format
@@ -38,7 +39,7 @@ void append(std::string& line, const char* fmt, Args... args) {
 }
 
 double deg360(double rad) {
-  double d = std::fmod(rad * kRadToDeg, 360.0);
+  double d = std::fmod(rad * kDegPerRad, 360.0);
   if (d < 0.0) d += 360.0;
   return d >= 360.0 ? 0.0 : d;
 }
@@ -85,7 +86,7 @@ void writeTruthCsv(std::ostream& out, const SimResult& r) {
     append(line, "%.6f,%.6f,%.6f,%.6f,%.9f,%.9f,%.6f,%s,%d,%d,", s.t_s, heading_true,
            wrap360(heading_true - r.declination_deg), r.declination_deg, g.latitude_deg, g.longitude_deg,
            r.config.mount_yaw_deg, activityName(s.activity), s.indoor ? 1 : 0, s.moving ? 1 : 0);
-    append(line, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,", e.pitch_rad * kRadToDeg, e.roll_rad * kRadToDeg,
+    append(line, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,", e.pitch_rad * kDegPerRad, e.roll_rad * kDegPerRad,
            deg360(core::headingOfAxis(s.q_nb, core::kDocumentedHeadAxis)),
            core::headHeight(s.q_nb, core::kDocumentedHeadAxis), deg360(s.path_heading_rad),
            std::hypot(s.velocity_ned_mps.x(), s.velocity_ned_mps.y()));

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/gait.hpp"
 
 namespace headingd::sim {
@@ -16,7 +17,7 @@ using core::Quat;
 using core::Vec3;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using core::kRadPerDeg;
 
 // Stream ids for the phone scenarios' draws (independent of the other scenarios' and of
 // simulation.cpp's sensor streams).
@@ -71,7 +72,7 @@ CarrySpec drawTextingCarry(Rng& rng) {
   // raised 20-45 deg (issue 28), turned up to 10 deg off straight ahead (ours).
   const double tilt_deg = rng.uniform(20.0, 45.0);
   const double yaw_deg = rng.uniform(-10.0, 10.0);
-  c.q_limb_sensor = about(Vec3::UnitZ(), yaw_deg * kDeg) * about(Vec3::UnitY(), tilt_deg * kDeg);
+  c.q_limb_sensor = about(Vec3::UnitZ(), yaw_deg * kRadPerDeg) * about(Vec3::UnitY(), tilt_deg * kRadPerDeg);
   c.pivot_body_m = Vec3(0.0, hand * 0.18, kElbowDown_m);
   c.sensor_limb_m = Vec3(0.28, -hand * 0.15, 0.05);
   // The hand bobs a little about the elbow with each stride (ours: 2 deg walking, 4 running).
@@ -86,7 +87,7 @@ CarrySpec drawCallingCarry(Rng& rng) {
   const double ear = side(rng);
   // At the ear: the top points up and back (60-80 deg above level, ours: the phone spans ear
   // to mouth), the back of the phone away from the head.
-  const double elevation = rng.uniform(60.0, 80.0) * kDeg;
+  const double elevation = rng.uniform(60.0, 80.0) * kRadPerDeg;
   c.q_limb_sensor = fromAxes(Vec3(-std::cos(elevation), 0.0, -std::sin(elevation)), Vec3(0.0, ear, 0.0));
   c.sensor_limb_m = Vec3(0.02, ear * 0.08, -kEarUp_m);
   // The head nods little with the stride (ours: 1.5 deg walking, 3 running).
@@ -101,7 +102,8 @@ CarrySpec drawSwingingCarry(Rng& rng) {
   const double hand = side(rng);
   // Gripped in the hand of the hanging arm, top forward, the screen toward the thigh, rolled
   // in the hand by up to 20 deg (ours).
-  c.q_limb_sensor = fromAxes(Vec3::UnitX(), Vec3(0.0, hand, 0.0)) * about(Vec3::UnitX(), rng.uniform(-20.0, 20.0) * kDeg);
+  c.q_limb_sensor =
+      fromAxes(Vec3::UnitX(), Vec3(0.0, hand, 0.0)) * about(Vec3::UnitX(), rng.uniform(-20.0, 20.0) * kRadPerDeg);
   c.pivot_body_m = Vec3(0.0, hand * kShoulderSide_m, -kShoulderUp_m);
   c.sensor_limb_m = Vec3(0.0, 0.0, kArmToGrip_m);
   // The arm a pendulum with the gait, +-30-60 deg (issue 28; more than the +-15-30 deg of an
@@ -123,7 +125,7 @@ CarrySpec drawPocketCarry(Rng& rng) {
   // by up to 30 deg (a front pocket sits toward the side; ours).
   const Vec3 top = upright ? Vec3(0.0, 0.0, -1.0) : Vec3(0.0, 0.0, 1.0);
   const Vec3 back = front ? Vec3::UnitX() : Vec3(-1.0, 0.0, 0.0);
-  c.q_limb_sensor = about(Vec3::UnitZ(), rng.uniform(-30.0, 30.0) * kDeg) * fromAxes(top, back);
+  c.q_limb_sensor = about(Vec3::UnitZ(), rng.uniform(-30.0, 30.0) * kRadPerDeg) * fromAxes(top, back);
   c.pivot_body_m = Vec3(0.0, leg * kHipSide_m, kHipDown_m);
   c.sensor_limb_m = front ? Vec3(0.07, leg * 0.02, 0.15) : Vec3(-0.09, 0.0, 0.08);
   // The thigh's angle in the sagittal plane (hip flexion): walking from ~30 deg forward at
@@ -146,7 +148,8 @@ CarrySpec drawRunningHandCarry(Rng& rng) {
   // in it top forward, the screen inward, rolled by up to 30 deg (ours). The arm swings with
   // the stride about the shoulder: +-10-20 deg walking, +-30-45 deg running (Novacheck 1998:
   // shoulder flexion-extension of ~70-90 deg range when running).
-  c.q_limb_sensor = fromAxes(Vec3::UnitX(), Vec3(0.0, hand, 0.0)) * about(Vec3::UnitX(), rng.uniform(-30.0, 30.0) * kDeg);
+  c.q_limb_sensor =
+      fromAxes(Vec3::UnitX(), Vec3(0.0, hand, 0.0)) * about(Vec3::UnitX(), rng.uniform(-30.0, 30.0) * kRadPerDeg);
   c.pivot_body_m = Vec3(0.0, hand * kShoulderSide_m, -kShoulderUp_m);
   c.sensor_limb_m = Vec3(0.25, -hand * 0.05, 0.30);
   c.walk_amplitude_deg = rng.uniform(10.0, 20.0);

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/gait.hpp"
 #include "headingd/sim/imu_model.hpp"
 #include "headingd/sim/trajectory.hpp"
@@ -18,7 +19,7 @@ using core::Quat;
 using core::Vec3;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using core::kRadPerDeg;
 
 Quat fromEulerZyx(double roll_rad, double pitch_rad, double yaw_rad) {
   return (Eigen::AngleAxisd(yaw_rad, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch_rad, Vec3::UnitY()) *
@@ -77,12 +78,12 @@ Quat scriptedAttitude(const ScriptedOrientation& script, double t_s) {
   while (i + 1 < k.size() && t_s >= k[i + 1].t_s) ++i;
   if (i + 1 == k.size() || t_s <= k[i].t_s) {
     const OrientationKeyframe& f = t_s <= k.front().t_s ? k.front() : k[i];
-    return fromEulerZyx(f.roll_deg * kDeg, f.pitch_deg * kDeg, f.yaw_deg * kDeg);
+    return fromEulerZyx(f.roll_deg * kRadPerDeg, f.pitch_deg * kRadPerDeg, f.yaw_deg * kRadPerDeg);
   }
   const OrientationKeyframe& a = k[i];
   const OrientationKeyframe& b = k[i + 1];
   const double w = smootherstep((t_s - a.t_s) / (b.t_s - a.t_s));
-  const auto lerp = [w](double x, double y) { return (x + w * (y - x)) * kDeg; };
+  const auto lerp = [w](double x, double y) { return (x + w * (y - x)) * kRadPerDeg; };
   return fromEulerZyx(lerp(a.roll_deg, b.roll_deg), lerp(a.pitch_deg, b.pitch_deg), lerp(a.yaw_deg, b.yaw_deg));
 }
 
@@ -106,8 +107,8 @@ Trajectory generateScriptedTrajectory(const Scenario& scenario, double rate_hz, 
   const double dt = 1.0 / rate_hz;
   const auto rows = static_cast<std::size_t>(std::floor(scenario.durationS() * rate_hz + 1e-9)) + 1;
   // Physiological tremor 6-12 Hz; the hand's slow drift 0.1-0.5 Hz.
-  const RotationWobble tremor(rng, script.tremor_deg * kDeg, 6.0, 12.0);
-  const RotationWobble drift(rng, script.hand_drift_deg * kDeg, 0.1, 0.5);
+  const RotationWobble tremor(rng, script.tremor_deg * kRadPerDeg, 6.0, 12.0);
+  const RotationWobble drift(rng, script.hand_drift_deg * kRadPerDeg, 0.1, 0.5);
   const Vec3 centre(0.0, 0.0, -script.height_m);
 
   // One extra sample before t = 0 and after the end, for the central differences.
@@ -131,7 +132,7 @@ Trajectory generateScriptedTrajectory(const Scenario& scenario, double rate_hz, 
     const double scripted_rate = rateBetween(scripted[i - 1], scripted[i + 1], 2.0 * dt).norm();
     bool shaking = false;
     for (const LinearShake& shake : script.shakes) shaking = shaking || shakeEnvelope(shake, s.t_s) > 0.0;
-    s.moving = scripted_rate > script.moving_rate_deg_s * kDeg || shaking;
+    s.moving = scripted_rate > script.moving_rate_deg_s * kRadPerDeg || shaking;
   }
   return out;
 }

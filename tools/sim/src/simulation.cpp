@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/field_model.hpp"
 #include "headingd/sim/trajectory_generator.hpp"
 
@@ -14,9 +15,9 @@ namespace headingd::sim {
 
 namespace {
 
+using core::kRadPerDeg;
 using core::Quat;
 using core::Vec3;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Stream ids of Rng::stream: one per part of the model, so that they stay independent.
 enum Stream : std::uint64_t { kTrajectory = 1, kField, kGyro, kAccel, kMag, kGps, kImuDraw };
@@ -28,10 +29,10 @@ void require(bool ok, const std::string& what) {
 // Sensor to body: zyx Euler angles of the mount. Without pitch and roll it is the yaw turn
 // alone, bit for bit (the runs made before they existed stay the same).
 Quat mountRotation(const SimConfig& c) {
-  Quat q_bs = core::headingRotation(c.mount_yaw_deg * kDeg);
+  Quat q_bs = core::headingRotation(c.mount_yaw_deg * kRadPerDeg);
   if (c.mount_pitch_deg != 0.0 || c.mount_roll_deg != 0.0) {
-    q_bs = (q_bs * Quat(Eigen::AngleAxisd(c.mount_pitch_deg * kDeg, Vec3::UnitY())) *
-            Quat(Eigen::AngleAxisd(c.mount_roll_deg * kDeg, Vec3::UnitX())))
+    q_bs = (q_bs * Quat(Eigen::AngleAxisd(c.mount_pitch_deg * kRadPerDeg, Vec3::UnitY())) *
+            Quat(Eigen::AngleAxisd(c.mount_roll_deg * kRadPerDeg, Vec3::UnitX())))
                .normalized();
   }
   return q_bs;

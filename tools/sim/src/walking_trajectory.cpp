@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/carry.hpp"
 #include "headingd/sim/gait.hpp"
 
@@ -15,7 +16,7 @@ using core::Quat;
 using core::Vec3;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using core::kRadPerDeg;
 
 // A smooth zero-mean signal: a few slow sinusoids with seeded amplitudes, frequencies and
 // phases. Smooth, so it can modulate speed and heading without jerky accelerations.
@@ -39,13 +40,13 @@ class SlowWander {
 
 // Heading from all turns that have started by t (each a smootherstep in time).
 double turnedHeadingRad(const Scenario& s, double t) {
-  double heading = s.initial_heading_deg * kDeg;
+  double heading = s.initial_heading_deg * kRadPerDeg;
   double start = 0.0;
   for (const Phase& p : s.phases) {
     for (const Turn& turn : p.turns) {
       const double s01 = turn.duration_s > 0.0 ? (t - start - turn.start_s) / turn.duration_s
                                                 : (t >= start + turn.start_s ? 1.0 : 0.0);
-      heading += turn.angle_deg * kDeg * smootherstep(s01);
+      heading += turn.angle_deg * kRadPerDeg * smootherstep(s01);
     }
     start += p.duration_s;
   }
@@ -84,7 +85,7 @@ Trajectory generateWalkingTrajectory(const Scenario& scenario, double rate_hz, R
   const auto rows = static_cast<std::size_t>(std::floor(scenario.durationS() * rate_hz + 1e-9)) + 1;
 
   const SlowWander speed_modulation(rng, 0.005, 0.015, 0.01, 0.08);  // a few % of speed
-  const SlowWander heading_wander(rng, 0.5 * kDeg, 1.0 * kDeg, 0.005, 0.05);
+  const SlowWander heading_wander(rng, 0.5 * kRadPerDeg, 1.0 * kRadPerDeg, 0.005, 0.05);
 
   // One extra sample before t = 0 and after the end, for the central differences.
   const std::size_t n = rows + 2;
@@ -122,11 +123,12 @@ Trajectory generateWalkingTrajectory(const Scenario& scenario, double rate_hz, R
     position[i] = path + excursion + Vec3(0.0, 0.0, -g.height_m);
 
     const double sway = 2.0 * kPi * kSwayHz * t;
-    const double yaw = heading + g.osc_yaw_deg * kDeg * std::cos(0.5 * step_phase);
-    const double pitch = (g.pitch_deg + g.osc_pitch_deg * std::sin(step_phase + 0.25 * kPi) +
-                          g.sway_deg * std::sin(sway)) * kDeg;
-    const double roll = (g.roll_deg + g.osc_roll_deg * std::sin(0.5 * step_phase) +
-                         g.sway_deg * std::sin(1.3 * sway + 1.0)) * kDeg;
+    const double yaw = heading + g.osc_yaw_deg * kRadPerDeg * std::cos(0.5 * step_phase);
+    const double pitch =
+        (g.pitch_deg + g.osc_pitch_deg * std::sin(step_phase + 0.25 * kPi) + g.sway_deg * std::sin(sway)) * kRadPerDeg;
+    const double roll =
+        (g.roll_deg + g.osc_roll_deg * std::sin(0.5 * step_phase) + g.sway_deg * std::sin(1.3 * sway + 1.0)) *
+        kRadPerDeg;
     attitude[i] = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
                    Eigen::AngleAxisd(roll, Vec3::UnitX()))
                       .normalized();
@@ -152,7 +154,7 @@ Trajectory generateWalkingTrajectory(const Scenario& scenario, double rate_hz, R
     s.q_b_sensor = q_b_sensor[i];
     s.path_heading_rad = path_heading[i];
     const double turn_rate = std::abs(core::wrapAngle(path_heading[i + 1] - path_heading[i - 1])) / (2.0 * dt);
-    s.moving = phase_state[i].gait.speed_mps > 0.05 || turn_rate > 1.0 * kDeg || phase_state[i].changing_posture;
+    s.moving = phase_state[i].gait.speed_mps > 0.05 || turn_rate > 1.0 * kRadPerDeg || phase_state[i].changing_posture;
   }
   return out;
 }

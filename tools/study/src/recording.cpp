@@ -4,6 +4,7 @@
 #include <limits>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "headingd/sim/rng.hpp"
@@ -40,14 +41,14 @@ Recording fromSimulation(const sim::SimResult& result, std::string name) {
   Recording r;
   r.name = std::move(name);
   r.rate_hz = result.config.imu_rate_hz;
-  const core::Quat true_to_magnetic = core::headingRotation(-result.declination_deg * std::numbers::pi / 180.0);
+  const core::Quat true_to_magnetic = core::headingRotation(-result.declination_deg * core::kRadPerDeg);
   for (const sim::ImuRow& row : result.imu) {
     r.samples.push_back(sim::imuSample(row));
     r.truth_nb.push_back((true_to_magnetic * row.q_ns).normalized());
     r.moving.push_back(row.moving);
   }
   r.reference_field_uT = 1e-3 * result.wmm.f_nT;
-  r.reference_inclination_rad = result.wmm.inclination_deg * std::numbers::pi / 180.0;
+  r.reference_inclination_rad = result.wmm.inclination_deg * core::kRadPerDeg;
   return r;
 }
 

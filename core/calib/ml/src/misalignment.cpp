@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "headingd/calib/calibration_error.hpp"
+#include "headingd/core/angles.hpp"
 
 namespace headingd::calib {
 
@@ -110,7 +111,7 @@ std::vector<MisalignmentEstimate> misalignmentMinima(std::span<const Vec3> mag_o
   }
   std::stable_sort(found.begin(), found.end(), [](const Solution& a, const Solution& b) { return a.cost < b.cost; });
   // Several starts descend into the same minimum: keep the lowest of each group.
-  constexpr double kSameMinimum_rad = 5.0 * std::numbers::pi / 180.0;
+  constexpr double kSameMinimum_rad = 5.0 * core::kRadPerDeg;
   std::vector<MisalignmentEstimate> out;
   std::vector<Mat3> kept;
   for (const Solution& s : found) {

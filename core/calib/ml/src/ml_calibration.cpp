@@ -14,6 +14,7 @@
 
 #include "headingd/calib/calibration_error.hpp"
 #include "headingd/calib/ml/ml_adjoint_gradient.hpp"
+#include "headingd/core/angles.hpp"
 
 namespace headingd::calib {
 
@@ -83,7 +84,7 @@ class ProgressForwarder : public ceres::IterationCallback {
 };
 
 // Within a degree of ±90° the dip is at the wall of its domain.
-constexpr double kDipWall_rad = 89.0 * std::numbers::pi / 180.0;
+constexpr double kDipWall_rad = 89.0 * core::kRadPerDeg;
 
 core::Vec3 sigmas(const core::Mat3& cov) { return cov.diagonal().cwiseMax(0.0).cwiseSqrt(); }
 

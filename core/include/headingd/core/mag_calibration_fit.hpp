@@ -1,6 +1,6 @@
 #pragma once
-// Whether a magnetometer calibration still describes the sensor, and the calibration applied
-// sample by sample with that check.
+// Whether a magnetometer calibration still describes the sensor (calibrated_imu_stream.hpp
+// applies a calibration sample by sample with this check).
 //
 // A calibration made with a magnet, a battery or a bracket next to the sensor is wrong once
 // that is taken away (BROAD trials 32-36: the magnet is on for part of the recording). The
@@ -75,26 +75,6 @@ class MagCalibrationFit {
   double other_better_s_ = 0.0;  // how long the reading not in use has fitted clearly better
   std::uint64_t set_aside_ = 0;
   std::uint64_t taken_back_ = 0;
-};
-
-// An ImuCorrection applied to a stream of samples, with the magnetometer part checked by
-// MagCalibrationFit: while the calibration no longer fits, the raw magnetometer reading
-// goes to the estimator (gyro and accelerometer corrections are always applied).
-class CalibratedImuStream {
- public:
-  CalibratedImuStream() = default;  // no calibration: samples pass unchanged
-  explicit CalibratedImuStream(const ImuCalibration& c, const MagCalibrationFitParams& p = {})
-      : correction_(c), fit_(p, c.mag.field_norm_uT), calibrated_(true) {}
-
-  ImuSample apply(const ImuSample& raw);
-  const MagCalibrationFit& magFit() const { return fit_; }
-
- private:
-  ImuCorrection correction_;
-  MagCalibrationFit fit_;
-  bool calibrated_ = false;
-  std::int64_t last_mag_t_ns_ = 0;
-  bool have_last_mag_ = false;
 };
 
 }  // namespace headingd::core

@@ -50,7 +50,7 @@ std::unique_ptr<Source> createCandumpLogSource(const SourceConfig& config, Sourc
 class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
  public:
   // Reads the DBC file and the whole log (throws core::ConfigError for the DBC and mapping,
-  // files::CsvError when the log cannot be read or its gzip stream is corrupt). Lines that are
+  // files::FileError when the log cannot be read or its gzip stream is corrupt). Lines that are
   // not frames, frames with outlying times and a cut gzip end are counted and logged.
   CandumpLogSource(std::string name, const CandumpLogSourceConfig& config, AtEnd at_end, const PlaybackClock* clock,
                    std::uint16_t source_index, SampleRing<ImuRingEntry>* imu_ring);

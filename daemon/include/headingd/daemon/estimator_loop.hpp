@@ -21,7 +21,7 @@
 #include "headingd/attitude_t.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_then_gps_order.hpp"
-#include "headingd/core/mag_calibration_fit.hpp"
+#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/latency_histogram.hpp"
 #include "headingd/daemon/lcm_messages.hpp"

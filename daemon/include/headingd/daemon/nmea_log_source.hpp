@@ -40,7 +40,7 @@ std::unique_ptr<Source> createNmeaLogSource(const SourceConfig& config, SourceCo
 
 class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
  public:
-  // Reads the whole log (throws files::CsvError naming the file when it cannot, or when its
+  // Reads the whole log (throws files::FileError naming the file when it cannot, or when its
   // gzip stream is corrupt).
   NmeaLogSource(std::string name, const NmeaLogSourceConfig& config, const PlaybackConfig& playback,
                 const PlaybackClock* clock, std::uint16_t source_index, SampleRing<GpsRingEntry>* gps_ring);

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
+
 namespace headingd::calib {
 
 enum class DipSign {
@@ -20,7 +22,7 @@ enum class DipSign {
 
 // Within this of the magnetic equator the sign says little (the WMM's error, a few tenths of
 // a degree, is far smaller, but the local field's anomalies are not): no sign is imposed.
-inline constexpr double kDipSignMinimum_rad = 5.0 * std::numbers::pi / 180.0;
+inline constexpr double kDipSignMinimum_rad = 5.0 * core::kRadPerDeg;
 
 // The sign of an expected dip (WMM, rad); kUnknown near the magnetic equator or for NaN.
 inline DipSign dipSignOf(double expected_dip_rad) {

@@ -34,7 +34,7 @@ struct NmeaEpochs {
   nmea::Counters counters;
 };
 
-// Throws CsvError (file errors) like the other readers. '#' comment lines are skipped.
+// Throws FileError when the file cannot be read (gzip_file.hpp). '#' comment lines are skipped.
 NmeaEpochs readNmeaEpochs(const std::string& path, double first_epoch_t_s = 0.0);
 
 }  // namespace headingd::files

@@ -6,6 +6,7 @@
 // 20-40 ms late against the gyro. Sources of each number in phone_imu.cpp.
 #include <numbers>
 
+#include "headingd/core/angles.hpp"
 #include "headingd/sim/imu_model.hpp"
 #include "headingd/sim/rng.hpp"
 
@@ -23,7 +24,7 @@ struct PhoneRanges {
   // log-uniform.
   static constexpr DrawRange kGyroNoiseAt100Hz_rad_s{0.003, 0.02};
   // |constant gyro bias| per axis, rad/s, log-uniform, random sign: 0.05 to 6 deg/s.
-  static constexpr DrawRange kGyroBiasMagnitude_rad_s{0.05 * std::numbers::pi / 180.0, 6.0 * std::numbers::pi / 180.0};
+  static constexpr DrawRange kGyroBiasMagnitude_rad_s{0.05 * core::kRadPerDeg, 6.0 * core::kRadPerDeg};
   // Accelerometer white-noise density, m/s²/√Hz (100-400 µg/√Hz), log-uniform.
   static constexpr DrawRange kAccelNoiseDensity{100e-6 * 9.80665, 400e-6 * 9.80665};
   // Magnetometer white noise per sample, µT, uniform.
