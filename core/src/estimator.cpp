@@ -71,7 +71,7 @@ Estimator::Estimator(const EstimatorParams& params)
       mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
                         p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
                         p_.mag_max_reference_dip_deviation_rad, p_.mag_back_to_before_s,
-                        p_.mag_residual_hard_iron_uT}),
+                        p_.mag_residual_hard_iron_uT, p_.mag_learn_first_s, p_.mag_learn_new_s}),
       heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
                             p_.bias_walk_rad_s_per_sqrt_s, p_.heading_field_set_aside_share,
                             p_.heading_field_turn_rad}),

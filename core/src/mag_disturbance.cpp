@@ -1,5 +1,6 @@
 #include "headingd/core/mag_disturbance.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace headingd::core {
@@ -81,11 +82,44 @@ MagDisturbance MagDisturbanceDetector::test(double field_norm_uT, double dip_rad
       back_s_ = 0.0;
     }
   }
-  if (has_reference_) {  // on the low-passes: a steady offset, not single noisy samples
-    d.norm_reference = std::abs(norm_lp_.value() - reference_norm_uT_) > p_.max_reference_norm_deviation_uT;
-    d.dip_reference = std::abs(dip_lp_.value() - reference_dip_rad_) > p_.max_reference_dip_deviation_rad;
-  }
+  testReference(d, dt_s);
   return d;
+}
+
+void MagDisturbanceDetector::testReference(MagDisturbance& d, double dt_s) {
+  // On the low-passes: a steady offset, not single noisy samples.
+  const auto against = [&](double norm_uT, double dip_rad) {
+    d.norm_reference = std::abs(norm_lp_.value() - norm_uT) > p_.max_reference_norm_deviation_uT;
+    d.dip_reference = std::abs(dip_lp_.value() - dip_rad) > p_.max_reference_dip_deviation_rad;
+  };
+  if (has_reference_) {
+    against(reference_norm_uT_, reference_dip_rad_);
+    return;
+  }
+  if (!(p_.learn_first_s > 0.0)) return;
+  const bool homogeneous = !d.norm_jump && !d.dip_jump;
+  if (!has_learned_) {
+    learn_clean_s_ = homogeneous ? learn_clean_s_ + dt_s : 0.0;
+    if (learn_clean_s_ < p_.learn_first_s) return;
+    has_learned_ = true;
+    learned_norm_uT_ = norm_lp_.value();
+    learned_dip_rad_ = dip_lp_.value();
+  }
+  against(learned_norm_uT_, learned_dip_rad_);
+  const bool different = d.norm_reference || d.dip_reference;
+  different_s_ = different && homogeneous ? different_s_ + dt_s : 0.0;
+  const bool follow = !different && homogeneous;
+  if (follow || different_s_ >= p_.learn_new_s) {
+    // Within the thresholds: follow the low-passes over learn_new_s; a different field that
+    // stayed homogeneous that long: take it.
+    const double w = different ? 1.0 : std::min(1.0, dt_s / std::max(p_.learn_new_s, dt_s));
+    learned_norm_uT_ += w * (norm_lp_.value() - learned_norm_uT_);
+    learned_dip_rad_ += w * (dip_lp_.value() - learned_dip_rad_);
+    if (different) {
+      different_s_ = 0.0;
+      d.norm_reference = d.dip_reference = false;
+    }
+  }
 }
 
 }  // namespace headingd::core

@@ -65,6 +65,8 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"mag_prefilter_time_constant_s", &P::mag_prefilter_time_constant_s, 0.0, 10.0, "s"},
       {"mag_disturbance_time_constant_s", &P::mag_disturbance_time_constant_s, 1e-3, 600.0, "s"},
       {"mag_back_to_before_s", &P::mag_back_to_before_s, 0.0, 600.0, "s"},
+      {"mag_learn_first_s", &P::mag_learn_first_s, 0.0, 600.0, "s"},
+      {"mag_learn_new_s", &P::mag_learn_new_s, 0.1, 3600.0, "s"},
       {"mag_max_norm_deviation_uT", &P::mag_max_norm_deviation_uT, 0.0, 1000.0, "uT"},
       {"mag_max_dip_deviation_rad", &P::mag_max_dip_deviation_rad, 0.0, 3.2, "rad"},
       {"mag_residual_hard_iron_uT", &P::mag_residual_hard_iron_uT, 0.0, 1000.0, "uT"},

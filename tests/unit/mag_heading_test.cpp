@@ -311,6 +311,63 @@ TEST(MagDisturbance, ALastingChangeOrAShortCrossingOfTheOldFieldWaitsForTheLowPa
   EXPECT_LT(more, 1000);
 }
 
+// The low-pass tests and a learned field (no WMM): first after 5 s clean, a new one after 20 s.
+MagDisturbanceDetector learningDetector() {
+  MagDisturbanceParams p{};
+  p.time_constant_s = 3.0;
+  p.max_norm_deviation_uT = 3.0;
+  p.max_dip_deviation_rad = 0.07;
+  p.max_reference_norm_deviation_uT = 5.0;
+  p.max_reference_dip_deviation_rad = 0.07;
+  p.learn_first_s = 5.0;
+  p.learn_new_s = 20.0;
+  return MagDisturbanceDetector(p);
+}
+
+// Samples of 10 ms of one field until the verdict is clean, at most `limit`; how many were disturbed.
+int disturbedFor(MagDisturbanceDetector& d, double norm_uT, double dip_rad, int limit) {
+  int n = 0;
+  while (n < limit && disturbed(d.update(fieldOf(norm_uT), dip_rad, 0.01))) ++n;
+  return n;
+}
+
+TEST(MagDisturbance, WithoutAPositionALastingChangeIsDisturbedUntilItHasBeenHomogeneousForTheLearningTime) {
+  // A lift's steel cabin: 25 µT more for as long as one stands in it. The relative test alone
+  // accepts it once the low-pass has followed (ln(25 / 3) τ = 6.4 s); against the learned field
+  // it stays disturbed until it has been homogeneous for 20 s, and the field outside is clean
+  // again as soon as the relative test says so.
+  MagDisturbanceDetector relative = lowPassDetector(), learning = learningDetector();
+  for (int i = 0; i < 1000; ++i) {
+    ASSERT_FALSE(disturbed(relative.update(fieldOf(49.0), 1.15, 0.01)));
+    ASSERT_FALSE(disturbed(learning.update(fieldOf(49.0), 1.15, 0.01)));
+  }
+  EXPECT_FALSE(relative.hasLearnedReference());
+  EXPECT_TRUE(learning.hasLearnedReference());
+  EXPECT_LT(disturbedFor(relative, 74.0, 1.15, 10'000), 700);
+  int cabin = 0;
+  for (int i = 0; i < 1500; ++i) cabin += disturbed(learning.update(fieldOf(74.0), 1.15, 0.01)) ? 1 : 0;
+  EXPECT_EQ(cabin, 1500);  // 15 s in the cabin: disturbed throughout
+  EXPECT_LT(disturbedFor(learning, 49.0, 1.15, 10'000), 700);  // out again: the learned field
+  // Staying in a different field: learned after 20 s of it being homogeneous.
+  const int lasting = disturbedFor(learning, 60.0, 1.15, 10'000);
+  EXPECT_GT(lasting, 1900);
+  EXPECT_LT(lasting, 2300);
+  EXPECT_FALSE(disturbed(learning.update(fieldOf(60.0), 1.15, 0.01)));
+  // A WMM reference replaces the learned field.
+  learning.setReference(60.0, 1.15 + 0.2);
+  EXPECT_FALSE(learning.hasLearnedReference());
+  EXPECT_TRUE(learning.update(fieldOf(60.0), 1.15, 0.01).dip_reference);
+}
+
+TEST(MagDisturbance, TheLearnedFieldFollowsASlowDrift) {
+  // 8 µT over 200 s (a walk across a building whose field weakens slowly): the learned field
+  // lags 0.04 µT/s × 20 s = 0.8 µT behind, far inside the 5 µT bound; never disturbed.
+  MagDisturbanceDetector d = learningDetector();
+  int flagged = 0;
+  for (int i = 0; i < 20'000; ++i) flagged += disturbed(d.update(fieldOf(49.0 - 0.0004 * i), 1.15, 0.01)) ? 1 : 0;
+  EXPECT_EQ(flagged, 0);
+}
+
 TEST(MagDisturbance, FirstSampleIsNotDisturbed) {
   MagDisturbanceDetector d = lowPassDetector();
   EXPECT_FALSE(disturbed(d.update(fieldOf(500.0), -1.0, 0.01)));

@@ -359,6 +359,12 @@ struct EstimatorParams {
   // walk a shorter return time let a slowly varying field that crossed the outdoor values
   // count as clean. VQF: 10.46 / 3.99 / 2.60.
   double mag_back_to_before_s = 0.5;
+  // Without a position, the strength and dip tested against are learned (mag_disturbance.hpp):
+  // the first from a field clean for mag_learn_first_s (0: nothing learned, the relative tests
+  // alone), a different one once it has been homogeneous for mag_learn_new_s; the reference
+  // thresholds above apply. VQF learns its reference alike (5 s first, 20 s new).
+  double mag_learn_first_s = 0.0;
+  double mag_learn_new_s = 20.0;
   // When a disturbance begins, the heading goes back to the older background gyro-only
   // heading (ψ_g1/ψ_g2, eq. 4.4), from before the field started to go wrong, provided that
   // one is at most this old (gyro drift grows with age); 0 turns the restore off.

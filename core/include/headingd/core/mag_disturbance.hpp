@@ -34,6 +34,16 @@
 // clean again, the low-passes restarting there. A lasting change (a magnet attached, a
 // building) that never returns is still accepted only once the low-passes have followed it;
 // a field that passes through the old values as it turns does not stay there.
+//
+// Without a position there is no model to test the strength and dip against, and the relative
+// tests accept a lasting change once the low-passes have followed it (a few time constants):
+// standing in a lift's steel cabin, the heading follows its field after some seconds. So the
+// field's strength and dip are learned instead, as VQF learns its reference: from the low-passes
+// once the field has been clean for learn_first_s, then following them slowly (over learn_new_s)
+// while they stay within the reference thresholds; a field outside them is disturbed by the
+// same two absolute tests as against the WMM, and becomes the learned field only once it has
+// been homogeneous (the relative tests passing) for learn_new_s without a break. A WMM
+// reference replaces the learned one.
 #include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/low_pass.hpp"
 #include "headingd/core/noise_floor.hpp"
@@ -48,6 +58,8 @@ struct MagDisturbanceParams {
   double max_reference_dip_deviation_rad;  // |low-passed dip - I_WMM|
   double back_to_before_s;                 // 0: the low-passes alone decide (see above)
   double residual_hard_iron_uT = 0.0;      // per rad turned: the strength test's allowance
+  double learn_first_s = 0.0;  // clean this long: the first learned field (0: nothing learned)
+  double learn_new_s = 0.0;    // homogeneous this long: a different field is learned
 };
 
 // Which tests found the sample disturbed (several may).
@@ -88,6 +100,8 @@ class MagDisturbanceDetector {
   // The Earth's field at the current place (WMM): total intensity and inclination.
   void setReference(double field_norm_uT, double inclination_rad);
   bool hasReference() const { return has_reference_; }
+  // Whether the strength and dip tested against are learned ones (no WMM reference yet).
+  bool hasLearnedReference() const { return !has_reference_ && has_learned_; }
   double normDeviation() const { return norm_deviation_; }
   double dipDeviation() const { return dip_deviation_; }
 
@@ -95,6 +109,8 @@ class MagDisturbanceDetector {
   // The tests; the strength's allowance from the directions the update just took, if it took them.
   MagDisturbance test(double field_norm_uT, double dip_rad, double dt_s, bool has_directions);
   double turnedAgainstField() const;
+  // The absolute tests against the WMM's field, else against the learned one (learning it).
+  void testReference(MagDisturbance& d, double dt_s);
   // A relative test's threshold: 4 times the learned floor, within 1-5 times the configured value.
   static double relativeThreshold(const NoiseFloor& floor, double configured);
 
@@ -123,6 +139,13 @@ class MagDisturbanceDetector {
   bool has_reference_ = false;
   double reference_norm_uT_ = 0.0;
   double reference_dip_rad_ = 0.0;
+  // The learned field (no WMM reference): how long the field has been clean before the first,
+  // and how long a different one has been homogeneous.
+  bool has_learned_ = false;
+  double learned_norm_uT_ = 0.0;
+  double learned_dip_rad_ = 0.0;
+  double learn_clean_s_ = 0.0;
+  double different_s_ = 0.0;
 };
 
 }  // namespace headingd::core
