@@ -130,14 +130,15 @@ TEST(MagHeading, FullGainCorrectionAlignsWithTheField) {
 
 // ---------------------------------------------------------------- disturbance (§4.2)
 
-// Detector with the low-pass tests only (no WMM reference): τ = 3 s, 3 µT, 0.07 rad.
-MagDisturbanceDetector lowPassDetector() {
+// The low-pass tests only (no WMM reference): τ = 3 s, 3 µT, 0.07 rad.
+MagDisturbanceParams lowPassParams() {
   MagDisturbanceParams p{};
   p.time_constant_s = 3.0;
   p.max_norm_deviation_uT = 3.0;
   p.max_dip_deviation_rad = 0.07;
-  return MagDisturbanceDetector(p);
+  return p;
 }
+MagDisturbanceDetector lowPassDetector() { return MagDisturbanceDetector(lowPassParams()); }
 
 bool disturbed(const MagDisturbance& verdict) { return verdict.any(); }
 
@@ -261,10 +262,7 @@ TEST(MagDisturbance, AFieldThatTurnsAndStrengthensWhileTheSensorStaysStillIsStil
 
 // The same with the return to the field from before the disturbance (0.5 s, the default).
 MagDisturbanceDetector returningDetector() {
-  MagDisturbanceParams p{};
-  p.time_constant_s = 3.0;
-  p.max_norm_deviation_uT = 3.0;
-  p.max_dip_deviation_rad = 0.07;
+  MagDisturbanceParams p = lowPassParams();
   p.back_to_before_s = 0.5;
   return MagDisturbanceDetector(p);
 }
@@ -313,10 +311,7 @@ TEST(MagDisturbance, ALastingChangeOrAShortCrossingOfTheOldFieldWaitsForTheLowPa
 
 // The low-pass tests and a learned field (no WMM): first after 5 s clean, a new one after 20 s.
 MagDisturbanceDetector learningDetector() {
-  MagDisturbanceParams p{};
-  p.time_constant_s = 3.0;
-  p.max_norm_deviation_uT = 3.0;
-  p.max_dip_deviation_rad = 0.07;
+  MagDisturbanceParams p = lowPassParams();
   p.max_reference_norm_deviation_uT = 5.0;
   p.max_reference_dip_deviation_rad = 0.07;
   p.learn_first_s = 5.0;
