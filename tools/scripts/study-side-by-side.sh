@@ -14,7 +14,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build="$here/build" seeds=5 rates="100 50" grades="mems consumer phone" only="" sets=()
-scenarios="urban-walk run crawl thesis-declination shake shake-any handheld slow-rotation
+scenarios="urban-walk run crawl thesis-declination shake shake-any handheld slow-rotation indoor-static moving-disturbances vehicle-ride
            phone-texting phone-calling phone-swinging phone-pocket phone-running phone-running-circles"
 while [[ $# -gt 0 ]]; do
   case $1 in
