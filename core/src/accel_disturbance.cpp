@@ -11,12 +11,9 @@ double AccelDisturbanceLevel::update(const Vec3& accel_m_s2, double sample_perio
 
 const char* motionLevelName(MotionLevel level) {
   switch (level) {
-    case MotionLevel::kStanding:
-      return "standing";
-    case MotionLevel::kWalking:
-      return "walking";
-    case MotionLevel::kRunning:
-      return "running";
+    case MotionLevel::kStanding: return "standing";
+    case MotionLevel::kWalking: return "walking";
+    case MotionLevel::kRunning: return "running";
   }
   return "unknown";
 }

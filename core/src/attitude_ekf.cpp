@@ -95,8 +95,8 @@ Eigen::Vector2d AttitudeEkf::updateGravity(const Vec3& accel_m_s2, double accel_
   return updateGravityWhitened(accel_m_s2, accel_noise_m_s2, gravity_m_s2, &whitening);
 }
 
-Eigen::Vector2d AttitudeEkf::updateGravityWhitened(const Vec3& accel_m_s2, double accel_noise_m_s2,
-                                                   double gravity_m_s2, const Mat3* whitening) {
+Eigen::Vector2d AttitudeEkf::updateGravityWhitened(const Vec3& accel_m_s2, double accel_noise_m_s2, double gravity_m_s2,
+                                                   const Mat3* whitening) {
   const double f_down = -gravity_m_s2;  // f_n = (0, 0, -g)
   if (general_) {
     updateGravityGeneral(accel_m_s2, accel_noise_m_s2, f_down, whitening);
@@ -131,7 +131,7 @@ Eigen::Vector2d AttitudeEkf::updateGravityTilt(const Vec3& accel_m_s2, double ac
   const Eigen::Vector2d turn = B * (J.transpose() * residual);  // eq. 3.7a
   q_ += G.leftCols<2>() * turn;
   const Eigen::Matrix2d A = tilt_ - B * (W * tilt_);  // eq. 3.7b
-  const double xy = 0.5 * (A(0, 1) + A(1, 0));      // symmetric, as keepHeadingOutOfTilt keeps it
+  const double xy = 0.5 * (A(0, 1) + A(1, 0));        // symmetric, as keepHeadingOutOfTilt keeps it
   tilt_ << A(0, 0), xy, xy, A(1, 1);
   normalise();  // eq. 3.8
   // P about the NED axes is re-expressed at the new q by keeping A and the heading variance.
@@ -152,10 +152,10 @@ void AttitudeEkf::updateGravityGeneral(const Vec3& accel_m_s2, double accel_nois
   Mat3 S = HP * H.transpose();
   S.diagonal().array() += accel_noise_m_s2 * accel_noise_m_s2;
   const Mat43 K = HP.transpose() * symmetricInverse(S);  // eq. 3.6
-  const Vec4 q_prior = q_;  // P below belongs to this linearisation point
-  q_ += K * residual;  // eq. 3.7a (EKF form 2.9a)
-  P_ -= K * HP;  // eq. 3.7b; kept symmetric by keepHeadingOutOfTilt below
-  normalise();  // eq. 3.8
+  const Vec4 q_prior = q_;                               // P below belongs to this linearisation point
+  q_ += K * residual;                                    // eq. 3.7a (EKF form 2.9a)
+  P_ -= K * HP;                                          // eq. 3.7b; kept symmetric by keepHeadingOutOfTilt below
+  normalise();                                           // eq. 3.8
   keepHeadingOutOfTilt(q_prior);
 }
 

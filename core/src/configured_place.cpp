@@ -75,8 +75,9 @@ double decimalYearOfUnixNs(std::int64_t unix_ns) {
   using namespace std::chrono;
   const sys_days day = floor<days>(sys_time<nanoseconds>(nanoseconds(unix_ns)));
   const year_month_day ymd(day);
-  const double start_of_day = decimalYear(static_cast<int>(ymd.year()), static_cast<int>(static_cast<unsigned>(ymd.month())),
-                                          static_cast<int>(static_cast<unsigned>(ymd.day())));
+  const double start_of_day =
+      decimalYear(static_cast<int>(ymd.year()), static_cast<int>(static_cast<unsigned>(ymd.month())),
+                  static_cast<int>(static_cast<unsigned>(ymd.day())));
   const double days_in_year = ymd.year().is_leap() ? 366.0 : 365.0;
   const double day_fraction =
       static_cast<double>(unix_ns - duration_cast<nanoseconds>(day.time_since_epoch()).count()) / 86400e9;

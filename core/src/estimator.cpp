@@ -65,16 +65,15 @@ Estimator::Estimator(const EstimatorParams& params)
       mag_prefilter_(p_.mag_prefilter_time_constant_s),
       motion_(p_),
       heading_corrections_(p_.backup_reset_period_s),
-      body_up_({kDocumentedHeadAxis, p_.body_up_time_constant_s, p_.body_up_min_walking_s,
-                p_.body_up_relearn_after_s, p_.redefine_heading_leave, p_.redefine_heading_enter}),
+      body_up_({kDocumentedHeadAxis, p_.body_up_time_constant_s, p_.body_up_min_walking_s, p_.body_up_relearn_after_s,
+                p_.redefine_heading_leave, p_.redefine_heading_enter}),
       heading_definition_(p_.redefine_heading_enter, p_.redefine_heading_leave, p_.redefine_heading_after_s),
-      mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT,
-                        p_.mag_max_dip_deviation_rad, p_.mag_max_reference_norm_deviation_uT,
-                        p_.mag_max_reference_dip_deviation_rad, p_.mag_back_to_before_s,
-                        p_.mag_residual_hard_iron_uT, p_.mag_learn_first_s, p_.mag_learn_new_s}),
-      heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s,
-                            p_.bias_walk_rad_s_per_sqrt_s, p_.heading_field_set_aside_share,
-                            p_.heading_field_turn_rad}),
+      mag_disturbance_({p_.mag_disturbance_time_constant_s, p_.mag_max_norm_deviation_uT, p_.mag_max_dip_deviation_rad,
+                        p_.mag_max_reference_norm_deviation_uT, p_.mag_max_reference_dip_deviation_rad,
+                        p_.mag_back_to_before_s, p_.mag_residual_hard_iron_uT, p_.mag_learn_first_s,
+                        p_.mag_learn_new_s}),
+      heading_uncertainty_({p_.heading_field_sigma_rad, p_.heading_field_correlation_s, p_.bias_walk_rad_s_per_sqrt_s,
+                            p_.heading_field_set_aside_share, p_.heading_field_turn_rad}),
       attitude_net_turn_(kAttitudeMeanS, kAttitudeStepRad),
       mag_delay_({p_.mag_delay_max_s, p_.mag_delay_time_constant_s, p_.mag_delay_apply_below_sigma_s}),
       accel_delay_({p_.accel_delay_max_s, p_.accel_delay_time_constant_s, p_.accel_delay_apply_below_sigma_s,
@@ -100,9 +99,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
         initialise(s, mag_usable);
       }
       break;
-    case SampleVerdict::kFirst:
-      initialise(s, mag_usable);
-      break;
+    case SampleVerdict::kFirst: initialise(s, mag_usable); break;
     case SampleVerdict::kGap:
     case SampleVerdict::kClockJump:
       // The gyro cannot be integrated across the hole, so the attitude may have turned by
@@ -131,8 +128,7 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       tilt_seconds_ = 0.0;
       publish(s.t_ns);
       break;
-    default:
-      break;  // skipped and counted by the gate; the output stays as it was
+    default: break;  // skipped and counted by the gate; the output stays as it was
   }
   return verdict;
 }
@@ -190,8 +186,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
       p_.accel_delay_max_s > 0.0 && !out_.accel_clipped && motion_.level() == MotionLevel::kStanding &&
       std::abs(s.accel_m_s2.norm() - p_.gravity_m_s2) < kAccelDelayMaxNormDeviation * p_.gravity_m_s2;
   accel_delay_.update(gyro, &s.accel_m_s2, accel_clean, dt_s);
-  const Vec3 accel_now =
-      turnedToNow(accel_delay_, s.accel_m_s2, gyro, down_s, accel_clean, dt_s, &out_.accel_lag_s);
+  const Vec3 accel_now = turnedToNow(accel_delay_, s.accel_m_s2, gyro, down_s, accel_clean, dt_s, &out_.accel_lag_s);
   const bool mag_clean = field_for_rest != nullptr;
   mag_delay_.update(gyro, mag_usable ? &s.mag_uT : nullptr, mag_clean, dt_s);
   const Vec3 mag_now = turnedToNow(mag_delay_, s.mag_uT, gyro, down_s, mag_clean, dt_s, &out_.mag_lag_s);
@@ -345,8 +340,7 @@ void Estimator::applyFieldUpdates(const Vec3& filtered_uT, const Vec3& sample_uT
     const bool standing = motion_.level() == MotionLevel::kStanding && out_.accel_quasi_static;
     out_.qsf_mag_update_applied =
         qsf_mag_update_.update(ekf_, sample_uT, qsf_frame_.frameFromSensor(), out_.mag_quasi_static && standing,
-                               !out_.mag_used,
-                               qsf_field_interval_s_, heading_uncertainty_.rateSigmaRadS()) != 0.0;
+                               !out_.mag_used, qsf_field_interval_s_, heading_uncertainty_.rateSigmaRadS()) != 0.0;
   }
 }
 

@@ -42,21 +42,17 @@ GyroBiasEstimator::GyroBiasEstimator(const EstimatorParams& p)
       spread_{TurnSpread(tiltTimeConstantS(p)), TurnSpread(tiltTimeConstantS(p))},
       before_last_block_{state_, 0.0, 0, {}, false} {}
 
-const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT,
-                                      double dt_s) {
+const Vec3& GyroBiasEstimator::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s) {
   state_.predict(dt_s);
   // What the state was before the last block drifts alike, so that it can take its place.
   before_last_block_.state.predict(dt_s);
   settle();
   switch (rest_.update(gyro_rad_s, accel_m_s2, mag_uT, dt_s)) {
-    case RestDetector::News::kNone:
-      return bias_;
+    case RestDetector::News::kNone: return bias_;
     case RestDetector::News::kNewBlock:
       before_last_block_ = {state_, rest_seconds_, still_blocks_, previous_outlier_, has_previous_outlier_};
       break;
-    case RestDetector::News::kLastBlockWithdrawn:
-      restoreBeforeLastBlock();
-      return bias_;
+    case RestDetector::News::kLastBlockWithdrawn: restoreBeforeLastBlock(); return bias_;
     case RestDetector::News::kLastBlockRevised:
       // Nothing else changed the estimate since: the sensor was at rest, where the in-motion
       // update does not learn.

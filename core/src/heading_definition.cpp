@@ -7,8 +7,8 @@ namespace headingd::core {
 double headingOf(const Quat& q_nb) { return yawZyx(q_nb); }
 
 double headingOfAxis(const Quat& q_nb, const Vec3& head_axis_s) {
-  const Vec3 head_n = q_nb * head_axis_s;        // eq. 3.11's q ⊗ q_y applied to x
-  return std::atan2(head_n.y(), head_n.x());     // definition 3.3.1
+  const Vec3 head_n = q_nb * head_axis_s;     // eq. 3.11's q ⊗ q_y applied to x
+  return std::atan2(head_n.y(), head_n.x());  // definition 3.3.1
 }
 
 double headHeight(const Quat& q_nb, const Vec3& head_axis_s) {

@@ -52,7 +52,7 @@ GpsObservation usableValues(const GpsObservation& gps, std::uint64_t& ignored, c
 }  // namespace
 
 const char* declinationSourceName(unsigned s) {
-  static const char* const kNames[8] = {"none",    "wmm",         "gps",         "wmm+gps",
+  static const char* const kNames[8] = {"none",     "wmm",          "gps",          "wmm+gps",
                                         "receiver", "wmm+receiver", "gps+receiver", "wmm+gps+receiver"};
   return kNames[s & 7u];
 }

@@ -84,7 +84,7 @@ void HeadingUncertainty::predict(double dt_s, double rate_variance, double attit
   }
   const double phi_place = field_decay_(dt_s);
   // Most samples turn by nothing (NetTurn counts in steps): no exp for them.
-  const double phi_attitude = p_.field_turn_rad <= 0.0 ? phi_place
+  const double phi_attitude = p_.field_turn_rad <= 0.0  ? phi_place
                               : attitude_turn_rad > 0.0 ? std::exp(-attitude_turn_rad / p_.field_turn_rad)
                                                         : 1.0;
   const double floor = p_.field_sigma_rad * p_.field_sigma_rad;
@@ -133,8 +133,8 @@ void HeadingUncertainty::showInnovation(double innovation_rad, double dt_s) {
   // through the dip) is not white from sample to sample, and counted per sample it would say
   // the field's mean error known a hundred times too soon.
   if (!known_) return;
-  const double noise = std::max(innovation_noise_variance_, kMinNoiseVariance) *
-                       std::max(kInnovationMeanS / std::max(dt_s, 1e-6), 1.0);
+  const double noise =
+      std::max(innovation_noise_variance_, kMinNoiseVariance) * std::max(kInnovationMeanS / std::max(dt_s, 1e-6), 1.0);
   const Eigen::Vector4d PHt = shown_P_.col(kA) + shown_P_.col(kP) - shown_P_.col(kE);
   const double S = PHt(kA) + PHt(kP) - PHt(kE) + noise;
   shown_x_ += PHt * ((innovation_rad - shown_x_(kA) - shown_x_(kP) + shown_x_(kE)) / S);

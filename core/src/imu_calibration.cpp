@@ -41,9 +41,9 @@ ImuCorrection::ImuCorrection(const ImuCalibration& c) {
 
 ImuSample ImuCorrection::apply(const ImuSample& s) const {
   ImuSample out = s;
-  out.gyro_rad_s = gyro_inverse_scale_.cwiseProduct(s.gyro_rad_s - gyro_bias_);   // eq. 2.41 solved for ω
+  out.gyro_rad_s = gyro_inverse_scale_.cwiseProduct(s.gyro_rad_s - gyro_bias_);    // eq. 2.41 solved for ω
   out.accel_m_s2 = accel_inverse_scale_.cwiseProduct(s.accel_m_s2 - accel_bias_);  // eq. 2.40 solved for a_p
-  if (s.has_mag) out.mag_uT = magnetometer(s.mag_uT);                               // K&S eq. 8 solved for m_b
+  if (s.has_mag) out.mag_uT = magnetometer(s.mag_uT);                              // K&S eq. 8 solved for m_b
   return out;
 }
 

@@ -61,7 +61,8 @@ ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string
   if (const toml::node* range = calibration.node("sample_range")) {
     const toml::array* a = range->as_array();
     if (a == nullptr || a->size() != 2 || !a->get(0)->is_integer() || !a->get(1)->is_integer() ||
-        *a->get(0)->value<std::int64_t>() > *a->get(1)->value<std::int64_t>() || *a->get(0)->value<std::int64_t>() < 0) {
+        *a->get(0)->value<std::int64_t>() > *a->get(1)->value<std::int64_t>() ||
+        *a->get(0)->value<std::int64_t>() < 0) {
       calibration.fail("sample_range", "expected [first, end) as two integers, 0 <= first <= end");
     }
     c.provenance.first_sample = *a->get(0)->value<std::int64_t>();
@@ -78,14 +79,19 @@ ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string
   c.mag.offset_uT = mag.vec3("offset_uT", c.mag.offset_uT, "uT");
   if (mag.has("field_norm_uT")) {
     c.mag.field_norm_uT = mag.finite("field_norm_uT", 0.0, "uT");
-    if (!(c.mag.field_norm_uT > 0.0 && c.mag.field_norm_uT < 1000.0)) mag.fail("field_norm_uT", "expected 0 < value < 1000 uT");
+    if (!(c.mag.field_norm_uT > 0.0 && c.mag.field_norm_uT < 1000.0))
+      mag.fail("field_norm_uT", "expected 0 < value < 1000 uT");
   }
   if (mag.has("field_norm_source")) {
     const std::string s = mag.string("field_norm_source", "");
-    if (s == "wmm") c.mag.field_norm_source = FieldNormSource::kWmm;
-    else if (s == "argument") c.mag.field_norm_source = FieldNormSource::kArgument;
-    else if (s == "data") c.mag.field_norm_source = FieldNormSource::kData;
-    else mag.fail("field_norm_source", "expected \"wmm\", \"argument\" or \"data\", got \"" + s + "\"");
+    if (s == "wmm")
+      c.mag.field_norm_source = FieldNormSource::kWmm;
+    else if (s == "argument")
+      c.mag.field_norm_source = FieldNormSource::kArgument;
+    else if (s == "data")
+      c.mag.field_norm_source = FieldNormSource::kData;
+    else
+      mag.fail("field_norm_source", "expected \"wmm\", \"argument\" or \"data\", got \"" + s + "\"");
   }
   c.mag.field_norm_detail = mag.string("field_norm_detail", c.mag.field_norm_detail);
   if (mag.has("dip_deg")) c.mag.dip_rad = mag.number("dip_deg", 0.0, -90.0, 90.0, "degrees") * kRadPerDeg;
@@ -131,7 +137,8 @@ std::string formatImuCalibration(const ImuCalibration& c) {
   o << "sample_range = [" << p.first_sample << ", " << p.end_sample << "]  # rows used, [first, end)\n";
   o << "created = " << quoted(p.created) << "\n\n";
   o << "[magnetometer]\n";
-  o << "D = [" << vec(c.mag.D.row(0)) << ",\n     " << vec(c.mag.D.row(1)) << ",\n     " << vec(c.mag.D.row(2)) << "]\n";
+  o << "D = [" << vec(c.mag.D.row(0)) << ",\n     " << vec(c.mag.D.row(1)) << ",\n     " << vec(c.mag.D.row(2))
+    << "]\n";
   o << "offset_uT = " << vec(c.mag.offset_uT) << "\n";
   if (c.mag.field_norm_uT > 0.0) o << "field_norm_uT = " << num(c.mag.field_norm_uT) << "\n";
   o << "field_norm_source = " << quoted(fieldNormSourceName(c.mag.field_norm_source)) << "\n";

@@ -32,7 +32,8 @@ double QuasiStaticFieldUpdate::update(AttitudeEkf& ekf, const Vec3& field_uT, co
   // δ·tan(dip) (1.7° of heading per 0.5° at 73° dip), which the update would take for heading drift.
   NavigationState state;
   state.q_nb = (headingRotation(heading_corrected_rad_) * start_attitude_ * start_gyro_frame_.conjugate() *
-                gyro_frame_from_sensor).normalized();
+                gyro_frame_from_sensor)
+                   .normalized();
   const double turned_rad = state.q_nb.angularDistance(start_attitude_);
   const double residual_uT = p_.residual_hard_iron_uT * turned_rad;
   const ReferenceVectorModel model{reference_ned_uT_, std::hypot(p_.noise_uT, residual_uT)};

@@ -69,9 +69,9 @@ Mat43 rightProductMatrix(const Vec4& q) {
 Vec3 rotateEarthToBody(const Vec4& q, const Vec3& v) {
   const double q0 = q(0), q1 = q(1), q2 = q(2), q3 = q(3);
   Mat3 m;  // Henriksson eq. 2.30
-  m << q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 + q0 * q3), 2 * (q1 * q3 - q0 * q2),
-      2 * (q1 * q2 - q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 + q0 * q1),
-      2 * (q0 * q2 + q1 * q3), 2 * (q2 * q3 - q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
+  m << q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 + q0 * q3), 2 * (q1 * q3 - q0 * q2), 2 * (q1 * q2 - q0 * q3),
+      q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 + q0 * q1), 2 * (q0 * q2 + q1 * q3), 2 * (q2 * q3 - q0 * q1),
+      q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
   return m * v;
 }
 
@@ -91,8 +91,7 @@ EulerAngles eulerZyx(const Quat& q_nb) { return eulerZyx(q_nb, yawZyx(q_nb)); }
 EulerAngles eulerZyx(const Quat& q_nb, double yaw_rad) {
   const double q0 = q_nb.w(), q1 = q_nb.x(), q2 = q_nb.y(), q3 = q_nb.z();
   const double sin_pitch = std::clamp(2.0 * (q0 * q2 - q1 * q3), -1.0, 1.0);
-  return {std::atan2(2.0 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3), std::asin(sin_pitch),
-          yaw_rad};
+  return {std::atan2(2.0 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3), std::asin(sin_pitch), yaw_rad};
 }
 
 double yawZyx(const Quat& q_nb) {

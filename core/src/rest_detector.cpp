@@ -140,7 +140,9 @@ bool RestDetector::measuredTurn(double dt_s, const Block& block, const BlockPoin
     Vec3 mean = Vec3::Zero();
     Mat3 covariance = Mat3::Zero();
   };
-  Hypothesis hypotheses[4] = {{Mat3::Zero()}, {prior_variance * about_horizontal}, {prior_variance * about_vertical},
+  Hypothesis hypotheses[4] = {{Mat3::Zero()},
+                              {prior_variance * about_horizontal},
+                              {prior_variance * about_vertical},
                               {prior_variance * Mat3::Identity()}};
   // Without a usable field the part about the vertical is not seen: it is taken as still.
   const int hypothesis_count = block.with_mag ? 4 : 2;
@@ -181,8 +183,8 @@ bool RestDetector::judgeBlock(double dt_s, const Block& block, const BlockPoint&
   Vec3 turn;
   Mat3 turn_covariance;
   const double block_s = end.time_s;
-  const bool still = measuredTurn(dt_s, block, end, &turn, &turn_covariance) &&
-                     turn.norm() <= p_.rest_max_turn_rate_rad_s * block_s;
+  const bool still =
+      measuredTurn(dt_s, block, end, &turn, &turn_covariance) && turn.norm() <= p_.rest_max_turn_rate_rad_s * block_s;
   at_rest_ = still;
   if (still) {
     // ∫ω̄ dt over T carries the gyro's white noise as ∫ω dt does: σ² dt T, σ² the samples'
@@ -213,7 +215,8 @@ bool RestDetector::judgePart(double dt_s, const Block& block, double end_s, doub
   if (after == course.begin()) return false;
   const BlockPoint& end = *std::prev(after);
   if (end.time_s < min_s) return false;
-  if (std::any_of(course.begin(), after, [gyro_bound](const BlockPoint& point) { return point.gyro_rms >= gyro_bound; })) {
+  if (std::any_of(course.begin(), after,
+                  [gyro_bound](const BlockPoint& point) { return point.gyro_rms >= gyro_bound; })) {
     return false;
   }
   return judgeBlock(dt_s, block, end);
@@ -242,7 +245,8 @@ void RestDetector::startBlock(bool with_mag) {
   next_judgement_s_ = p_.rest_min_duration_s;
 }
 
-RestDetector::News RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT, double dt_s) {
+RestDetector::News RestDetector::update(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, const Vec3* mag_uT,
+                                        double dt_s) {
   const double gyro_rms = gyro_.update(gyro_rad_s, dt_s);
   const double accel_rms = accel_.update(accel_m_s2, dt_s);
   accel_floor_.update(accel_rms, dt_s);
@@ -270,8 +274,7 @@ RestDetector::News RestDetector::update(const Vec3& gyro_rad_s, const Vec3& acce
   // mean rate still apply) with its largest RMS kept, and once the floor is known that RMS is
   // held against the bound; no block ends before.
   const bool floor_known = std::isfinite(gyro_floor_.value());
-  const double gyro_bound =
-      gyro_floor_.threshold(2.5, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s);
+  const double gyro_bound = gyro_floor_.threshold(2.5, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s);
   if (!floor_known) {
     provisional_gyro_rms_ = std::max(provisional_gyro_rms_, gyro_rms);
     if (gyro_.elapsed_s >= kQuietFromTimeConstants * p_.rest_filter_time_constant_s) {
@@ -281,12 +284,12 @@ RestDetector::News RestDetector::update(const Vec3& gyro_rad_s, const Vec3& acce
   // The floor's first value is the RMS of the moment it becomes known: if the stretch has
   // turned into a motion by then (an opening rest shorter than the floor's warm-up), that value
   // is the motion's. The stretch's own quietest RMS bounds it too.
-  const double provisional_bound = std::min(
-      gyro_bound,
-      std::clamp(2.5 * provisional_min_rms_, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s));
+  const double provisional_bound =
+      std::min(gyro_bound,
+               std::clamp(2.5 * provisional_min_rms_, p_.rest_gyro_threshold_rad_s, p_.rest_gyro_max_threshold_rad_s));
   const bool provisional_failed = floor_known && provisional_gyro_rms_ >= provisional_bound;
-  const bool gyro_steady = floor_known ? gyro_rms < gyro_bound && !provisional_failed
-                                       : gyro_rms < p_.rest_gyro_max_threshold_rad_s;
+  const bool gyro_steady =
+      floor_known ? gyro_rms < gyro_bound && !provisional_failed : gyro_rms < p_.rest_gyro_max_threshold_rad_s;
   const bool steady = gyro_steady && accel_rms < p_.rest_accel_threshold_m_s2 &&
                       gyro_.mean.norm() <= p_.bias_max_rad_s + p_.rest_max_turn_rate_rad_s;
   if (floor_known) {

@@ -4,22 +4,14 @@ namespace headingd::core {
 
 const char* sampleVerdictName(SampleVerdict v) {
   switch (v) {
-    case SampleVerdict::kAccepted:
-      return "accepted";
-    case SampleVerdict::kFirst:
-      return "first";
-    case SampleVerdict::kGap:
-      return "gap";
-    case SampleVerdict::kClockJump:
-      return "clock_jump";
-    case SampleVerdict::kDuplicateTime:
-      return "duplicate_time";
-    case SampleVerdict::kBackwardsTime:
-      return "backwards_time";
-    case SampleVerdict::kNonFinite:
-      return "non_finite";
-    case SampleVerdict::kOutOfRange:
-      return "out_of_range";
+    case SampleVerdict::kAccepted: return "accepted";
+    case SampleVerdict::kFirst: return "first";
+    case SampleVerdict::kGap: return "gap";
+    case SampleVerdict::kClockJump: return "clock_jump";
+    case SampleVerdict::kDuplicateTime: return "duplicate_time";
+    case SampleVerdict::kBackwardsTime: return "backwards_time";
+    case SampleVerdict::kNonFinite: return "non_finite";
+    case SampleVerdict::kOutOfRange: return "out_of_range";
   }
   return "unknown";
 }

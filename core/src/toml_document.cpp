@@ -24,8 +24,8 @@ toml::table parseTomlDocument(std::string_view text, const std::string& source) 
   try {
     return toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    std::string message = source + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
-                          std::string(e.description());
+    std::string message =
+        source + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " + std::string(e.description());
     const std::string key = keyOnLine(text, e.source().begin.line);
     if (!key.empty()) message += " (in the value of '" + key + "')";
     throw ConfigError(message);

@@ -87,7 +87,8 @@ double TomlTableReader::number(std::string_view key, double fallback, double min
   const toml::node* node = find(key);
   if (node == nullptr) return fallback;
   const std::optional<double> value = node->value<double>();
-  if (!value || !(node->is_floating_point() || node->is_integer())) fail(key, std::string("expected a number in ") + unit);
+  if (!value || !(node->is_floating_point() || node->is_integer()))
+    fail(key, std::string("expected a number in ") + unit);
   if (!(*value >= min && *value <= max)) {
     std::ostringstream o;
     o << *value << " is out of range, expected " << min << " .. " << max << " " << unit;
@@ -104,8 +105,7 @@ double TomlTableReader::finite(std::string_view key, double fallback, const char
   return *value;
 }
 
-std::int64_t TomlTableReader::integer(std::string_view key, std::int64_t fallback, std::int64_t min,
-                                      std::int64_t max) {
+std::int64_t TomlTableReader::integer(std::string_view key, std::int64_t fallback, std::int64_t min, std::int64_t max) {
   const toml::node* node = find(key);
   if (node == nullptr) return fallback;
   if (!node->is_integer()) fail(key, "expected an integer");

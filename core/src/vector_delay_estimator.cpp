@@ -42,8 +42,7 @@ void VectorDelayEstimator::update(const Vec3& gyro_rad_s, const Vec3* sample, bo
       // Residual variance per sample (3 components, one parameter), over the information.
       const double residual_ss = std::max(sum_yy_ - estimate_s_ * sum_xy_, 0.0);
       sigma_s_ = std::sqrt(residual_ss / (3.0 * count_ - 1.0) / sum_xx_);
-      candidate_s_ =
-          sigma_s_ < p_.apply_below_sigma_s ? std::clamp(estimate_s_, -p_.max_delay_s, p_.max_delay_s) : 0.0;
+      candidate_s_ = sigma_s_ < p_.apply_below_sigma_s ? std::clamp(estimate_s_, -p_.max_delay_s, p_.max_delay_s) : 0.0;
     }
   }
   predicted_ = *sample;

@@ -49,9 +49,7 @@ void VerticalRateError::fieldSample(bool set_aside, double period_s) {
   set_aside_share_ += weight * ((set_aside ? 1.0 : 0.0) - set_aside_share_);
 }
 
-bool VerticalRateError::fieldIsClean() const {
-  return referenceIsRecent() || set_aside_share_ < max_set_aside_share_;
-}
+bool VerticalRateError::fieldIsClean() const { return referenceIsRecent() || set_aside_share_ < max_set_aside_share_; }
 
 double VerticalRateError::learn(double innovation_rad, double dt_s, double turn_rate_rad_s) {
   if (time_constant_s_ <= 0.0 || turn_rate_rad_s > max_turn_rad_s_ || steady_s_ < settle_s_) return 0.0;

@@ -39,8 +39,8 @@ HarmonicTables layoutTables(const WmmCoefficients& k) {
   (void)kRootTableReady;
   const auto c_size = static_cast<std::size_t>(SphericalEngine::coeff::Csize(N, N));
   const auto s_size = static_cast<std::size_t>(SphericalEngine::coeff::Ssize(N, N));
-  HarmonicTables t{std::vector<double>(c_size, 0.0), std::vector<double>(s_size, 0.0),
-                   std::vector<double>(c_size, 0.0), std::vector<double>(s_size, 0.0)};
+  HarmonicTables t{std::vector<double>(c_size, 0.0), std::vector<double>(s_size, 0.0), std::vector<double>(c_size, 0.0),
+                   std::vector<double>(s_size, 0.0)};
   for (const WmmTerm& term : k.terms) {
     if (term.n < 1 || term.n > N || term.m < 0 || term.m > term.n) {
       throw std::invalid_argument("WorldMagneticModel: coefficient (n, m) outside the model's degree");
@@ -93,8 +93,8 @@ MagneticFieldElements WorldMagneticModel::field(const GeodeticPosition& position
   // geocentric ones (v_geo = M v_enu, row-major).
   double px = 0.0, py = 0.0, pz = 0.0;
   std::vector<double> M(9);
-  GeographicLib::Geocentric::WGS84().Forward(position.latitude_deg, position.longitude_deg,
-                                              position.height_km * 1000.0, px, py, pz, M);
+  GeographicLib::Geocentric::WGS84().Forward(position.latitude_deg, position.longitude_deg, position.height_km * 1000.0,
+                                             px, py, pz, M);
 
   // B = -∇V and V = a · Value, so the geocentric field is -a times the gradient (nT/m · m).
   double gx = 0.0, gy = 0.0, gz = 0.0;

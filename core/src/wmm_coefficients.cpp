@@ -123,8 +123,8 @@ WmmCoefficients parseWmmCoefficients(std::string_view cof_text, std::string_view
   for (int n = 1; n <= out.degree; ++n) {
     for (int m = 0; m <= n; ++m) {
       if (!seen[static_cast<std::size_t>(triangularIndex(n, m))]) {
-        at_end.fail("missing coefficient n = " + std::to_string(n) + ", m = " + std::to_string(m) +
-                    " (degree " + std::to_string(out.degree) + ")");
+        at_end.fail("missing coefficient n = " + std::to_string(n) + ", m = " + std::to_string(m) + " (degree " +
+                    std::to_string(out.degree) + ")");
       }
     }
   }

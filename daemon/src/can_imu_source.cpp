@@ -3,8 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include "headingd/can/can_config_toml.hpp"
-#include "headingd/daemon/can_assembler_report.hpp"
 #include "headingd/can/epoch_flush.hpp"
+#include "headingd/daemon/can_assembler_report.hpp"
 #include "headingd/daemon/clocks.hpp"
 
 namespace headingd::daemon {
@@ -25,8 +25,8 @@ std::unique_ptr<SourceConfig> parseCanSource(const SourceTable& table) {
 
 std::unique_ptr<Source> createCanSource(const SourceConfig& config, SourceContext& context) {
   const can::CanConfig& can = static_cast<const CanSourceConfig&>(config).can;
-  auto source = std::make_unique<CanImuSource>(config.table, can, context.source_index, context.addImuRing(config.table),
-                                               context.recorder);
+  auto source = std::make_unique<CanImuSource>(config.table, can, context.source_index,
+                                               context.addImuRing(config.table), context.recorder);
   spdlog::info("source can: interface {}, DBC {}", can.interface, can.dbc_path);
   return source;
 }
@@ -41,10 +41,10 @@ CanImuSource::CanImuSource(std::string name, const can::CanConfig& config, std::
   assembler_ = std::make_unique<can::EpochAssembler>(*codec_, can::epochSettingsFrom(config_));
   flush_age_ns_ = can::epochFlushAgeNs(config_, *codec_);
   receiver_ = std::make_unique<can::SocketCanReceiver>(io(), can::receiverSettingsFrom(config_, *codec_),
-                                                      [this](const can::CanFrame& f) { onFrame(f); });
+                                                       [this](const can::CanFrame& f) { onFrame(f); });
   if (recorder != nullptr && recorder->can != nullptr) {
-    recorder_ = std::make_unique<recording::CanStreamRecorder>(*recorder->can, config_.interface,
-                                                               recorder->can_time_offset_ns);
+    recorder_ =
+        std::make_unique<recording::CanStreamRecorder>(*recorder->can, config_.interface, recorder->can_time_offset_ns);
   }
 }
 

@@ -1,18 +1,18 @@
 #include "headingd/daemon/candump_log_source.hpp"
 
-#include <chrono>
 #include <spdlog/spdlog.h>
+#include <chrono>
 #include <sstream>
 
+#include "headingd/can/epoch_flush.hpp"
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/can_assembler_report.hpp"
-#include "headingd/can/epoch_flush.hpp"
 #include "headingd/daemon/clocks.hpp"
 #include "headingd/daemon/log_frame_times.hpp"
 #include "headingd/daemon/median_step.hpp"
 #include "headingd/daemon/readable_path.hpp"
-#include "headingd/files/input_file.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace headingd::daemon {
 
@@ -78,9 +78,10 @@ CandumpLogSource::CandumpLogSource(std::string name, const CandumpLogSourceConfi
                  reader_counters_.bad_lines, reader_counters_.first_bad_line, reader_counters_.first_bad_reason);
   }
   if (end_missing_) {
-    spdlog::warn("{}: the gzip log is cut short: {} bytes of text, {} frames read; the end of the log is missing, "
-                 "what was read is played",
-                 config.path, log.text.size(), all.size());
+    spdlog::warn(
+        "{}: the gzip log is cut short: {} bytes of text, {} frames read; the end of the log is missing, "
+        "what was read is played",
+        config.path, log.text.size(), all.size());
   }
   placeFrames(config.path, all, lines);
 }
@@ -110,16 +111,18 @@ void CandumpLogSource::placeFrames(const std::string& path, const std::vector<ca
   auto seconds = [](std::int64_t ns) { return static_cast<double>(ns) * 1e-9; };
   if (times.outlier_frames > 0) {
     const auto at = static_cast<std::size_t>(times.first_outlier_index);
-    spdlog::warn("{}: {} frame(s) whose time lies more than {:g} s from the frames around them are skipped; the "
-                 "first, line {}: ({:.6f})",
-                 path, times.outlier_frames, seconds(LogFrameTimes::kJumpNs), lines[at], seconds(log_ns[at]));
+    spdlog::warn(
+        "{}: {} frame(s) whose time lies more than {:g} s from the frames around them are skipped; the "
+        "first, line {}: ({:.6f})",
+        path, times.outlier_frames, seconds(LogFrameTimes::kJumpNs), lines[at], seconds(log_ns[at]));
   }
   if (times.time_steps > 0) {
     const auto at = static_cast<std::size_t>(times.first_step_index);
-    spdlog::warn("{}: the log's time steps {} time(s) (back by more than {:g} s or ahead by more than {:g} s) and is "
-                 "played on without waiting; the first, line {}: ({:.6f})",
-                 path, times.time_steps, seconds(LogFrameTimes::kJumpNs), seconds(LogFrameTimes::kLongestGapNs),
-                 lines[at], seconds(log_ns[at]));
+    spdlog::warn(
+        "{}: the log's time steps {} time(s) (back by more than {:g} s or ahead by more than {:g} s) and is "
+        "played on without waiting; the first, line {}: ({:.6f})",
+        path, times.time_steps, seconds(LogFrameTimes::kJumpNs), seconds(LogFrameTimes::kLongestGapNs), lines[at],
+        seconds(log_ns[at]));
   }
 }
 

@@ -1,13 +1,13 @@
 #include "headingd/daemon/config.hpp"
 #include "headingd/core/toml_document.hpp"
 
-#include <filesystem>
 #include <toml++/toml.h>
+#include <filesystem>
 
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/readable_path.hpp"
-#include "headingd/files/input_file.hpp"
 #include "headingd/daemon/source_registry.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -28,7 +28,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   toml::table doc = core::parseTomlDocument(text, source);
 
   // The daemon's own tables; the sources' are the registry's.
-  std::vector<std::string> tables = {"daemon", "log",      "realtime", "rings",   "lcm",
+  std::vector<std::string> tables = {"daemon",    "log",   "realtime", "rings",   "lcm",
                                      "estimator", "place", "recorder", "nmea_out"};
   for (std::string& t : sourceTableNames()) tables.push_back(std::move(t));
   core::rejectUnknownTables(doc, source, tables);
@@ -78,16 +78,16 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
                               url.rfind("memq://", 0) == 0 || url.rfind("tcpq://", 0) == 0;
     if (!known_scheme) lcm.fail("url", "'" + url + "': expected an LCM URL (udpm://, file://, memq://, tcpq://)");
   }
-  std::string* channels[] = {&c.lcm.heading_channel, &c.lcm.attitude_channel, &c.lcm.imu_channel,
-                             &c.lcm.gps_channel, &c.lcm.status_channel};
-  const char* channel_keys[] = {"heading_channel", "attitude_channel", "imu_channel", "gps_channel",
-                                "status_channel"};
+  std::string* channels[] = {&c.lcm.heading_channel, &c.lcm.attitude_channel, &c.lcm.imu_channel, &c.lcm.gps_channel,
+                             &c.lcm.status_channel};
+  const char* channel_keys[] = {"heading_channel", "attitude_channel", "imu_channel", "gps_channel", "status_channel"};
   for (int i = 0; i < 5; ++i) {
     *channels[i] = lcm.string(channel_keys[i], *channels[i]);
     checkChannel(lcm, channel_keys[i], *channels[i]);
     for (int j = 0; j < i; ++j) {
       if (*channels[j] == *channels[i]) {
-        lcm.fail(channel_keys[i], "'" + *channels[i] + "' is already the " + channel_keys[j] + "; expected a channel of its own");
+        lcm.fail(channel_keys[i],
+                 "'" + *channels[i] + "' is already the " + channel_keys[j] + "; expected a channel of its own");
       }
     }
   }

@@ -6,13 +6,13 @@
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/daemon/can_imu_source.hpp"
 #include "headingd/daemon/clocks.hpp"
-#include "headingd/daemon/recording_files.hpp"
 #include "headingd/daemon/gpsd_gps_source.hpp"
-#include "headingd/daemon/serial_gps_source.hpp"
-#include "headingd/recording/recording_format.hpp"
 #include "headingd/daemon/realtime.hpp"
+#include "headingd/daemon/recording_files.hpp"
+#include "headingd/daemon/serial_gps_source.hpp"
 #include "headingd/daemon/source_registry.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/recording/recording_format.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -58,9 +58,17 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   // Each source gets its own rings (single producer each); see daemon/README.md, "Sources".
   const SourceConfigs& configs = config_.sources;
   makeRecorder();
-  SourceContext context{config_.imu_ring_capacity, config_.gps_ring_capacity, imu_rings_, gps_rings_,
-                        configs.playback, &playback_clock_, 0, std::nullopt,
-                        recorder_ != nullptr ? &source_sinks_ : nullptr, std::nullopt, std::nullopt};
+  SourceContext context{config_.imu_ring_capacity,
+                        config_.gps_ring_capacity,
+                        imu_rings_,
+                        gps_rings_,
+                        configs.playback,
+                        &playback_clock_,
+                        0,
+                        std::nullopt,
+                        recorder_ != nullptr ? &source_sinks_ : nullptr,
+                        std::nullopt,
+                        std::nullopt};
   sources_ = makeSources(configs, context);
   // The log sources play on one clock, which starts at the earliest first timestamp of the
   // logs (playback_clock.hpp).
@@ -70,12 +78,13 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   if (usesLogClock(configs)) {
     spdlog::info("log playback: speed {}x, start delay {} s, at end: {}{}", configs.playback.speed,
                  configs.playback.start_delay_s, atEndName(configs.playback.at_end),
-                 playback_clock_.loop_ns > 0
-                     ? fmt::format(" (a loop is {:.3f} s of log time)", static_cast<double>(playback_clock_.loop_ns) * 1e-9)
-                     : std::string());
+                 playback_clock_.loop_ns > 0 ? fmt::format(" (a loop is {:.3f} s of log time)",
+                                                           static_cast<double>(playback_clock_.loop_ns) * 1e-9)
+                                             : std::string());
   }
   if (config_.nmea_out.enabled) {
-    nmea_out_ = std::make_unique<NmeaOutServer>(config_.nmea_out, config_.log.repeat_burst, config_.log.repeat_interval_s);
+    nmea_out_ =
+        std::make_unique<NmeaOutServer>(config_.nmea_out, config_.log.repeat_burst, config_.log.repeat_interval_s);
   }
   if (sources_.empty()) spdlog::warn("no source is configured: STATUS will say degraded (no IMU data)");
 }
@@ -89,9 +98,9 @@ void Daemon::makeRecorder() {
     spdlog::info("black box off: {}", rc.off_reason.empty() ? "[recorder] enabled = false" : rc.off_reason);
     return;
   }
-  recorder_ = std::make_unique<Recorder>(rc, std::vector<std::string>{std::string(recording::kCanStream),
-                                                                      std::string(recording::kGpsStream),
-                                                                      std::string(recording::kEstimatorStream)});
+  recorder_ = std::make_unique<Recorder>(
+      rc, std::vector<std::string>{std::string(recording::kCanStream), std::string(recording::kGpsStream),
+                                   std::string(recording::kEstimatorStream)});
   for (const std::string_view stream : {recording::kCanStream, recording::kGpsStream, recording::kEstimatorStream}) {
     recorder_sinks_.push_back(std::make_unique<RecorderLineSink>(recorder_->stream(stream)));
   }
@@ -161,10 +170,9 @@ void Daemon::start() {
     s->start();
   }
   sources_started_ = true;
-  spdlog::info("running: estimator at {} Hz, LCM {} (channels {}, {}, {}, {}, {}){}", config_.rate_hz,
-               config_.lcm.url, config_.lcm.heading_channel, config_.lcm.attitude_channel, config_.lcm.imu_channel,
-               config_.lcm.gps_channel, config_.lcm.status_channel,
-               notifier_.underSystemd() ? ", under systemd" : "");
+  spdlog::info("running: estimator at {} Hz, LCM {} (channels {}, {}, {}, {}, {}){}", config_.rate_hz, config_.lcm.url,
+               config_.lcm.heading_channel, config_.lcm.attitude_channel, config_.lcm.imu_channel,
+               config_.lcm.gps_channel, config_.lcm.status_channel, notifier_.underSystemd() ? ", under systemd" : "");
   if (notifier_.watchdogIntervalUs() != 0) {
     spdlog::info("systemd watchdog every {:.1f} s, pinged from the estimator loop",
                  static_cast<double>(notifier_.watchdogIntervalUs()) * 1e-6);
@@ -180,8 +188,8 @@ void Daemon::stop() {
   if (loop_ != nullptr) loop_->stop();
   if (loop_thread_.joinable()) loop_thread_.join();
   if (publisher_ != nullptr) publisher_->stop();  // after its producer: sends what is queued
-  if (nmea_out_ != nullptr) nmea_out_->stop();  // after its producer
-  if (recorder_ != nullptr) recorder_->stop();  // after every producer
+  if (nmea_out_ != nullptr) nmea_out_->stop();    // after its producer
+  if (recorder_ != nullptr) recorder_->stop();    // after every producer
 }
 
 void Daemon::requestCalibrationReload() {

@@ -1,19 +1,19 @@
 #include "headingd/daemon/estimator_loop.hpp"
 
+#include <pthread.h>
+#include <spdlog/spdlog.h>
+#include <time.h>
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <pthread.h>
-#include <spdlog/spdlog.h>
-#include <time.h>
 #include <tuple>
 
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/daemon/clocks.hpp"
-#include "headingd/files/gzip_file.hpp"
 #include "headingd/daemon/logging.hpp"
 #include "headingd/daemon/realtime.hpp"
+#include "headingd/files/gzip_file.hpp"
 
 namespace headingd::daemon {
 
@@ -251,7 +251,8 @@ void EstimatorLoop::setRecorder(recording::LineSink* sink, const Recorder* recor
 void EstimatorLoop::setNmeaOut(NmeaOutServer* server, bool from_files) {
   nmea_out_ = server;
   nmea_from_files_ = from_files;
-  nmea_every_ticks_ = static_cast<std::uint64_t>(std::max(1LL, std::llround(config_.rate_hz / config_.nmea_out.rate_hz)));
+  nmea_every_ticks_ =
+      static_cast<std::uint64_t>(std::max(1LL, std::llround(config_.rate_hz / config_.nmea_out.rate_hz)));
 }
 
 void EstimatorLoop::sendNmea(Validity v) {
@@ -294,10 +295,11 @@ void EstimatorLoop::processImu(const ImuRingEntry& raw, std::int64_t utime_us) {
       spdlog::info("magnetometer calibration fits again: applied");
     } else {
       const core::MagCalibrationFit& fit = correction_.magFit();
-      spdlog::warn("magnetometer calibration no longer fits the readings (field strength raw {:.1f} uT varying "
-                   "{:.1f} %, calibrated {:.1f} uT varying {:.1f} %): set aside, raw magnetometer used",
-                   fit.rawStrength(), 100.0 * fit.rawFluctuation(), fit.calibratedStrength(),
-                   100.0 * fit.calibratedFluctuation());
+      spdlog::warn(
+          "magnetometer calibration no longer fits the readings (field strength raw {:.1f} uT varying "
+          "{:.1f} %, calibrated {:.1f} uT varying {:.1f} %): set aside, raw magnetometer used",
+          fit.rawStrength(), 100.0 * fit.rawFluctuation(), fit.calibratedStrength(),
+          100.0 * fit.calibratedFluctuation());
     }
   }
   const core::SampleVerdict verdict = pipeline_.process(e.sample);

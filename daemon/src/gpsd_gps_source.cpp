@@ -27,7 +27,8 @@ std::unique_ptr<SourceConfig> parseGpsdGpsSource(const SourceTable& table) {
 
 std::unique_ptr<Source> createGpsdGpsSource(const SourceConfig& config, SourceContext& context) {
   const gpsd::GpsdConfig& g = static_cast<const GpsdGpsSourceConfig&>(config).gpsd;
-  auto source = std::make_unique<GpsdGpsSource>(config.table, g, context.source_index, context.addGpsRing(config.table));
+  auto source =
+      std::make_unique<GpsdGpsSource>(config.table, g, context.source_index, context.addGpsRing(config.table));
   spdlog::info("source gps: gpsd at {}:{}", g.host, g.port);
   if (context.recorder != nullptr && context.recorder->gps != nullptr) {
     // The black box's GPS stream is the receiver's NMEA, which gpsd does not pass on.

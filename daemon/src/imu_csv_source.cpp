@@ -1,9 +1,9 @@
 #include "headingd/daemon/imu_csv_source.hpp"
 
+#include <spdlog/spdlog.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <spdlog/spdlog.h>
 
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/clocks.hpp"
@@ -19,7 +19,8 @@ std::unique_ptr<SourceConfig> parseImuCsvSource(const SourceTable& table) {
   core::TomlTableReader csv(&table.table, table.source, "imu_csv");
   c->enabled = csv.boolean("enabled", c->enabled);
   c->imu_csv_path = readablePath(csv, "path", "", table.base_dir, c->enabled, 0);
-  if (c->enabled && c->imu_csv_path.empty()) csv.fail("path", "expected the IMU CSV file to play (the source is enabled)");
+  if (c->enabled && c->imu_csv_path.empty())
+    csv.fail("path", "expected the IMU CSV file to play (the source is enabled)");
   c->nmea_path = readablePath(csv, "nmea", "", table.base_dir, c->enabled, files::kWholeLogLimit);
   c->nmea_first_epoch_t_s = csv.number("nmea_first_epoch_t_s", 0.0, -1e9, 1e9, "s");
   c->speed = csv.number("speed", c->speed, 0.01, 1000.0, "x real time");
@@ -28,7 +29,8 @@ std::unique_ptr<SourceConfig> parseImuCsvSource(const SourceTable& table) {
   c->at_end = at_end == "exit" ? AtEnd::kExit : at_end == "loop" ? AtEnd::kLoop : AtEnd::kStay;
   c->monotonic_time = csv.choice("time_axis", "file", {"file", "monotonic"}) == "monotonic";
   if (c->monotonic_time && c->speed != 1.0) {
-    csv.fail("time_axis", "\"monotonic\" needs speed = 1.0 (at another speed the file's time steps would not be the clock's)");
+    csv.fail("time_axis",
+             "\"monotonic\" needs speed = 1.0 (at another speed the file's time steps would not be the clock's)");
   }
   csv.rejectUnknownKeys();
   return c;
@@ -40,8 +42,9 @@ std::unique_ptr<Source> createImuCsvSource(const SourceConfig& config, SourceCon
   SampleRing<GpsRingEntry>* gps_ring = c.nmea_path.empty() ? nullptr : context.addGpsRing(c.table);
   auto source = std::make_unique<ImuCsvSource>(c.table, c, context.source_index, imu_ring, gps_ring);
   spdlog::info("source imu_csv: {} ({} samples{}), speed {}x, at end: {}", c.imu_csv_path, source->imuSampleCount(),
-               c.nmea_path.empty() ? std::string()
-                                   : ", GPS " + c.nmea_path + " (" + std::to_string(source->gpsEpochCount()) + " epochs)",
+               c.nmea_path.empty()
+                   ? std::string()
+                   : ", GPS " + c.nmea_path + " (" + std::to_string(source->gpsEpochCount()) + " epochs)",
                c.speed, atEndName(c.at_end));
   return source;
 }
@@ -59,7 +62,8 @@ ImuCsvSource::ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, s
     // One loop later = the file's length plus its median sample period, so the loop seam
     // looks like one ordinary sample step to the estimator's gate.
     std::vector<std::int64_t> steps;
-    for (std::size_t i = 1; i < std::min<std::size_t>(imu_.size(), 1001); ++i) steps.push_back(imu_[i].t_ns - imu_[i - 1].t_ns);
+    for (std::size_t i = 1; i < std::min<std::size_t>(imu_.size(), 1001); ++i)
+      steps.push_back(imu_[i].t_ns - imu_[i - 1].t_ns);
     loop_length_ns_ = imu_.back().t_ns - imu_.front().t_ns + std::max<std::int64_t>(*medianStep(std::move(steps)), 1);
   }
 }
@@ -112,8 +116,8 @@ void ImuCsvSource::run() {
       // first): this is when the data arrives, as from live sensors. The order the estimator
       // sees is the loop's (core/imu_then_gps_order.hpp: an epoch after the first IMU sample
       // at or after it, as in headingd-replay), so it is not repeated here.
-      const bool imu_next = next_gps >= gps_.size() ||
-                            (next_imu < imu_.size() && imu_[next_imu].t_ns <= gps_[next_gps].t_ns);
+      const bool imu_next =
+          next_gps >= gps_.size() || (next_imu < imu_.size() && imu_[next_imu].t_ns <= gps_[next_gps].t_ns);
       const std::int64_t t = imu_next ? imu_[next_imu].t_ns : gps_[next_gps].t_ns;
       const std::int64_t due = playAt(t + offset - axis_offset);
       if (due > monotonicNs() && !sleepUntil(due)) return;

@@ -41,7 +41,8 @@ double LatencyHistogram::percentile(double fraction) const {
   if (count_ == 0) return 0.0;
   const double clamped = std::clamp(fraction, 0.0, 1.0);
   // Rank of the value asked for, 1-based: the p50 of 1..100 is the 50th value.
-  const auto rank = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(clamped * static_cast<double>(count_))));
+  const auto rank =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(clamped * static_cast<double>(count_))));
   std::uint64_t seen = 0;
   for (int i = 0; i < kBuckets; ++i) {
     seen += buckets_[static_cast<std::size_t>(i)];

@@ -41,9 +41,10 @@ bool LcmPublisher::enqueue(std::size_t total, const std::string& channel) {
     ++queue_full_;
     std::uint64_t suppressed = 0;
     if (queue_full_log_.allow(monotonicNs(), &suppressed)) {
-      spdlog::warn("LCM send queue full (the sender thread is behind): a message on {} not published ({} in total; "
-                   "{} such messages suppressed)",
-                   channel, queue_full_, suppressed);
+      spdlog::warn(
+          "LCM send queue full (the sender thread is behind): a message on {} not published ({} in total; "
+          "{} such messages suppressed)",
+          channel, queue_full_, suppressed);
     }
     return fail();
   }
@@ -66,9 +67,9 @@ void LcmPublisher::sendLoop() {
 
 std::int64_t LcmPublisher::nextLook(std::int64_t now_ns) const {
   const std::int64_t due = next_flush_ns_.load(std::memory_order_acquire);
-  if (due > now_ns) return due;                                 // sleep until the tick
+  if (due > now_ns) return due;                                           // sleep until the tick
   if (due != 0 && now_ns - due < kPollWindowNs) return now_ns + kPollNs;  // the tick is running
-  return now_ns + kIdlePollNs;                                  // late, or no tick scheduled
+  return now_ns + kIdlePollNs;                                            // late, or no tick scheduled
 }
 
 void LcmPublisher::sendQueued() {

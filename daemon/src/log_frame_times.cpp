@@ -1,6 +1,5 @@
 #include "headingd/daemon/log_frame_times.hpp"
 
-
 namespace headingd::daemon {
 namespace {
 

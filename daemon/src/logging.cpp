@@ -1,11 +1,11 @@
 #include "headingd/daemon/logging.hpp"
 
-#include <atomic>
-#include <mutex>
 #include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/dist_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
+#include <atomic>
+#include <mutex>
 
 #include "headingd/daemon/journal_stream.hpp"
 

@@ -1,11 +1,11 @@
 // headingd: the real-time heading and attitude daemon (daemon/README.md).
+#include <spdlog/spdlog.h>
+#include <sys/resource.h>
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
-#include <spdlog/spdlog.h>
 #include <string>
-#include <sys/resource.h>
 
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/daemon.hpp"
@@ -67,10 +67,11 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", log_level, "override [log] level")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   app.set_version_flag("--version", std::string("headingd ") + HEADINGD_VERSION);
-  app.footer("Exit status: 0 stopped by SIGINT/SIGTERM or at the end of the played logs (or --check-config: good), "
-             "1 start-up failed after the checks (e.g. LCM cannot open), 2 bad command line, configuration or file "
-             "it names (the unit does not restart then). A SIGTERM while the files are read at start-up ends the "
-             "process at once (killed by the signal).");
+  app.footer(
+      "Exit status: 0 stopped by SIGINT/SIGTERM or at the end of the played logs (or --check-config: good), "
+      "1 start-up failed after the checks (e.g. LCM cannot open), 2 bad command line, configuration or file "
+      "it names (the unit does not restart then). A SIGTERM while the files are read at start-up ends the "
+      "process at once (killed by the signal).");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,16 +1,16 @@
 #include "headingd/daemon/nmea_log_source.hpp"
 
+#include <spdlog/spdlog.h>
 #include <chrono>
 #include <cmath>
-#include <spdlog/spdlog.h>
 #include <vector>
 
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/median_step.hpp"
 #include "headingd/daemon/readable_path.hpp"
-#include "headingd/files/nmea_epochs.hpp"
-#include "headingd/files/input_file.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/files/input_file.hpp"
+#include "headingd/files/nmea_epochs.hpp"
 #include "headingd/nmea/gps_observation_from_fix.hpp"
 
 namespace headingd::daemon {
@@ -47,8 +47,7 @@ std::unique_ptr<Source> createNmeaLogSource(const SourceConfig& config, SourceCo
 }
 
 NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config, const PlaybackConfig& playback,
-                             const PlaybackClock* clock, std::uint16_t source_index,
-                             SampleRing<GpsRingEntry>* gps_ring)
+                             const PlaybackClock* clock, std::uint16_t source_index, SampleRing<GpsRingEntry>* gps_ring)
     : AsioSource(std::move(name), source_index, Lifetime::kUntilPlayed, kSnapshotPeriod),
       at_end_(playback.at_end),
       clock_(clock),
@@ -60,9 +59,10 @@ NmeaLogSource::NmeaLogSource(std::string name, const NmeaLogSourceConfig& config
   files::MaybeCutText log = files::readMaybeGzipLog(config.path, files::kWholeLogLimit);
   end_missing_ = log.end_missing;
   if (end_missing_) {
-    spdlog::warn("{}: the gzip log is cut short: {} bytes of text read; the end of the log is missing, what was "
-                 "read is played",
-                 config.path, log.text.size());
+    spdlog::warn(
+        "{}: the gzip log is cut short: {} bytes of text read; the end of the log is missing, what was "
+        "read is played",
+        config.path, log.text.size());
   }
   const std::vector<nmea::FixUpdate> updates = files::parseNmeaLogFixes(log.text).updates;
   nmea::NmeaLogPlayerConfig player;
@@ -137,8 +137,7 @@ void NmeaLogSource::onStart() { startPlayerOnTime(); }
 void NmeaLogSource::startPlayerOnTime() {
   log_time_.emplace(offset_ns_, first_day_ns_);  // each loop places its epochs afresh
   // The player feeds its first group at once: start it when the log clock reaches it.
-  const std::int64_t due =
-      first_log_ns_ ? clock_->dueMonoNs(*first_log_ns_ + loop_offset_ns_) : clock_->start_mono_ns;
+  const std::int64_t due = first_log_ns_ ? clock_->dueMonoNs(*first_log_ns_ + loop_offset_ns_) : clock_->start_mono_ns;
   start_timer_.expires_at(steadyAt(due));
   start_timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) player_->start();

@@ -44,8 +44,7 @@ void formatNmeaOut(const NmeaOutConfig& config, const core::HeadingOutput& h, Va
   if (config.hdg && v == Validity::kFresh) {
     const double magnetic_deg = (h.heading_mag_rad - h.mount_yaw_rad) * kDegPerRad;
     const std::optional<double> variation_deg =
-        h.declination_sources != core::kDeclNone ? std::optional<double>(h.declination_rad * kDegPerRad)
-                                                 : std::nullopt;
+        h.declination_sources != core::kDeclNone ? std::optional<double>(h.declination_rad * kDegPerRad) : std::nullopt;
     append(out, nmea::formatHdg(config.talker, magnetic_deg, 0.0, variation_deg));
   }
 }

@@ -1,20 +1,20 @@
 #include "headingd/daemon/nmea_out_server.hpp"
 
+#include <spdlog/spdlog.h>
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/ip/udp.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/write.hpp>
 #include <boost/lockfree/spsc_queue.hpp>
+#include <chrono>
 #include <deque>
 #include <optional>
-#include <utility>
-#include <spdlog/spdlog.h>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "headingd/daemon/clocks.hpp"
@@ -283,8 +283,8 @@ class NmeaOutServer::Impl {
     clients_now_.store(clients_.size(), std::memory_order_relaxed);
     if (error != nullptr) {
       errors_.fetch_add(1, std::memory_order_relaxed);
-      logLimited(error_log_, spdlog::level::warn, "nmea_out: client {} dropped: {} ({} now)", c->peer,
-                 error->message(), clients_.size());
+      logLimited(error_log_, spdlog::level::warn, "nmea_out: client {} dropped: {} ({} now)", c->peer, error->message(),
+                 clients_.size());
     } else {
       logLimited(connect_log_, spdlog::level::info, "nmea_out: client {} disconnected ({} now)", c->peer,
                  clients_.size());

@@ -1,12 +1,12 @@
 #include "headingd/daemon/realtime.hpp"
 
-#include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <pthread.h>
 #include <sched.h>
 #include <spdlog/spdlog.h>
 #include <sys/mman.h>
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 
 namespace headingd::daemon {
 
@@ -42,12 +42,12 @@ void RealtimeSettings::setFifo(int priority, const std::string& thread) {
   // Every thread meets the same refusal (the process's credentials and limits): said once.
   std::call_once(refusal_said_, [&] {
     const int highest = std::max(config_.sched_fifo_priority, config_.driver_fifo_priority);
-    spdlog::warn("real-time scheduling refused: SCHED_FIFO priority {} for the {} thread not permitted ({}); "
-                 "[realtime] asks for the estimator at {} and the drivers at {}, which needs CAP_SYS_NICE (the unit "
-                 "grants it) or an RLIMIT_RTPRIO of at least {}, in a cgroup with a real-time budget; continuing "
-                 "with normal scheduling for the threads refused (STATUS estimator_policy, driver_policy)",
-                 priority, thread, std::strerror(rc), config_.sched_fifo_priority, config_.driver_fifo_priority,
-                 highest);
+    spdlog::warn(
+        "real-time scheduling refused: SCHED_FIFO priority {} for the {} thread not permitted ({}); "
+        "[realtime] asks for the estimator at {} and the drivers at {}, which needs CAP_SYS_NICE (the unit "
+        "grants it) or an RLIMIT_RTPRIO of at least {}, in a cgroup with a real-time budget; continuing "
+        "with normal scheduling for the threads refused (STATUS estimator_policy, driver_policy)",
+        priority, thread, std::strerror(rc), config_.sched_fifo_priority, config_.driver_fifo_priority, highest);
   });
 }
 
@@ -65,9 +65,10 @@ void RealtimeSettings::applyToEstimatorThread() {
     if (rc == 0) {
       spdlog::info("estimator thread: pinned to CPU {}", list);
     } else {
-      spdlog::warn("estimator thread: CPU affinity {} refused ({}; does this machine have those CPUs, and does "
-                   "the cgroup's cpuset allow them?); continuing on any CPU",
-                   list, std::strerror(rc));
+      spdlog::warn(
+          "estimator thread: CPU affinity {} refused ({}; does this machine have those CPUs, and does "
+          "the cgroup's cpuset allow them?); continuing on any CPU",
+          list, std::strerror(rc));
     }
   }
   int policy = SCHED_OTHER;
@@ -97,10 +98,11 @@ void RealtimeSettings::lockMemory() {
     memory_locked_.store(true);
     spdlog::info("memory locked (mlockall)");
   } else {
-    spdlog::warn("mlockall refused ({}); it needs CAP_IPC_LOCK or an RLIMIT_MEMLOCK large enough for the "
-                 "whole address space (LimitMEMLOCK=infinity in the unit); continuing with pageable memory "
-                 "(STATUS memory_locked = false)",
-                 std::strerror(errno));
+    spdlog::warn(
+        "mlockall refused ({}); it needs CAP_IPC_LOCK or an RLIMIT_MEMLOCK large enough for the "
+        "whole address space (LimitMEMLOCK=infinity in the unit); continuing with pageable memory "
+        "(STATUS memory_locked = false)",
+        std::strerror(errno));
   }
 }
 
@@ -110,7 +112,7 @@ RealtimeReport RealtimeSettings::report() const {
   if (estimator >= 0) r.estimator = {schedulingPolicyName(estimator), estimator_priority_.load()};
   if (driver_threads_.load() > 0) {
     r.drivers = driver_threads_other_.load() > 0 ? SchedulingInUse{"SCHED_OTHER", 0}
-                                                  : SchedulingInUse{"SCHED_FIFO", driver_priority_.load()};
+                                                 : SchedulingInUse{"SCHED_FIFO", driver_priority_.load()};
   }
   r.memory_locked = memory_locked_.load();
   return r;

@@ -1,8 +1,8 @@
 #include "headingd/daemon/recorder.hpp"
 
+#include <spdlog/spdlog.h>
 #include <chrono>
 #include <cstring>
-#include <spdlog/spdlog.h>
 #include <stdexcept>
 
 #include "headingd/daemon/recorder_folder.hpp"

@@ -26,13 +26,14 @@ RecorderConfig parseRecorderTable(const toml::table* table, const std::string& s
   c.segment_max_bytes = static_cast<std::uint64_t>(r.integer("segment_max_bytes", 16 << 20, 4096, 1ll << 40));
   c.segment_max_age_s = r.number("segment_max_age_s", c.segment_max_age_s, 1.0, 7 * 86400.0, "s");
   c.total_max_bytes = static_cast<std::uint64_t>(r.integer("total_max_bytes", 1 << 30, 65536, 1ll << 50));
-  c.ring_lines = static_cast<std::size_t>(r.integer("ring_lines", static_cast<std::int64_t>(c.ring_lines), 64, 1 << 20));
+  c.ring_lines =
+      static_cast<std::size_t>(r.integer("ring_lines", static_cast<std::int64_t>(c.ring_lines), 64, 1 << 20));
   r.rejectUnknownKeys();
   // Room for a few streams' open segments, which the cap never deletes.
   if (c.total_max_bytes < 4 * c.segment_max_bytes) {
     r.failBetween("total_max_bytes", "segment_max_bytes",
-                  "total_max_bytes (" + std::to_string(c.total_max_bytes) + ") must be at least 4 x segment_max_bytes (" +
-                      std::to_string(c.segment_max_bytes) + ")");
+                  "total_max_bytes (" + std::to_string(c.total_max_bytes) +
+                      ") must be at least 4 x segment_max_bytes (" + std::to_string(c.segment_max_bytes) + ")");
   }
 
   if (!c.enabled) {
@@ -43,8 +44,9 @@ RecorderConfig parseRecorderTable(const toml::table* table, const std::string& s
       c.dir = state + "/recordings";
     } else {
       c.enabled = false;
-      c.off_reason = "[recorder] dir is \"\" and STATE_DIRECTORY is not set (the systemd unit sets it): nothing is "
-                     "recorded; set [recorder] dir to record";
+      c.off_reason =
+          "[recorder] dir is \"\" and STATE_DIRECTORY is not set (the systemd unit sets it): nothing is "
+          "recorded; set [recorder] dir to record";
     }
   }
   return c;

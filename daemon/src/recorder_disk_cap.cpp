@@ -1,12 +1,12 @@
 #include "headingd/daemon/recorder_disk_cap.hpp"
 
+#include <spdlog/spdlog.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <spdlog/spdlog.h>
 #include <tuple>
-#include <unistd.h>
 #include <vector>
 
 #include "headingd/daemon/recorder_folder.hpp"
@@ -120,9 +120,10 @@ void RecorderDiskCap::enforce() {
   }
   if (total_bytes_ > max_bytes_ && !said_cap_unreachable_) {
     said_cap_unreachable_ = true;
-    spdlog::warn("recorder: {} bytes under {}, above total_max_bytes = {}, and nothing left that may be deleted "
-                 "(segments being written, this recording's own files, files outside recording folders)",
-                 total_bytes_, dir_, max_bytes_);
+    spdlog::warn(
+        "recorder: {} bytes under {}, above total_max_bytes = {}, and nothing left that may be deleted "
+        "(segments being written, this recording's own files, files outside recording folders)",
+        total_bytes_, dir_, max_bytes_);
   }
   publishTotal();
 }

@@ -1,12 +1,12 @@
 #include "headingd/daemon/recorder_segments.hpp"
 
+#include <fcntl.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fcntl.h>
-#include <spdlog/spdlog.h>
-#include <unistd.h>
 
 #include "headingd/daemon/recorder_folder.hpp"
 #include "headingd/daemon/write_fully.hpp"
@@ -27,7 +27,8 @@ RecorderSegmentWriter::RecorderSegmentWriter(std::string folder, std::string str
     : folder_(std::move(folder)),
       stream_(std::move(stream)),
       segment_max_bytes_(config.segment_max_bytes),
-      segment_max_age_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config.segment_max_age_s))),
+      segment_max_age_(
+          std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config.segment_max_age_s))),
       tally_(tally),
       cap_(cap) {
   buffer_.reserve(kBufferBytes);
@@ -89,7 +90,8 @@ bool RecorderSegmentWriter::segmentReady(Clock::time_point now, bool ignore_back
 
 void RecorderSegmentWriter::appendNote() {
   char note[48];
-  const int n = std::snprintf(note, sizeof note, "# lost %llu lines\n", static_cast<unsigned long long>(lost_unannounced_));
+  const int n =
+      std::snprintf(note, sizeof note, "# lost %llu lines\n", static_cast<unsigned long long>(lost_unannounced_));
   buffer_.append(note, static_cast<std::size_t>(n));
   notes_in_buffer_.emplace_back(buffer_.size(), lost_unannounced_);
   segment_bytes_ += static_cast<std::size_t>(n);
@@ -163,9 +165,10 @@ void RecorderSegmentWriter::failed(const char* what, int error, Clock::time_poin
   notes_in_buffer_.clear();
   closeSegment();
   if (!failing_) {
-    spdlog::warn("recorder: cannot {} {}: {}; lines of stream '{}' are dropped (counted on STATUS) until a new "
-                 "segment can be written, next try in {:.0f} s",
-                 what, path_, std::strerror(error), stream_, seconds(backoff_));
+    spdlog::warn(
+        "recorder: cannot {} {}: {}; lines of stream '{}' are dropped (counted on STATUS) until a new "
+        "segment can be written, next try in {:.0f} s",
+        what, path_, std::strerror(error), stream_, seconds(backoff_));
   }
   failing_ = true;
   retry_at_ = now + backoff_;

@@ -82,15 +82,17 @@ void RecorderWriter::drain(StreamState& s, RecorderSegmentWriter::Clock::time_po
 void RecorderWriter::sayFirstLosses(StreamState& s) {
   if (!s.said_ring_full && s.stream->ring().stats().dropped > 0) {
     s.said_ring_full = true;
-    spdlog::warn("recorder: stream '{}' dropped lines: its ring of {} lines was full (the disk is slow or stuck); "
-                 "counted on STATUS as recorder_lines_dropped_ring_full, not logged again",
-                 s.stream->name(), s.stream->ring().capacity());
+    spdlog::warn(
+        "recorder: stream '{}' dropped lines: its ring of {} lines was full (the disk is slow or stuck); "
+        "counted on STATUS as recorder_lines_dropped_ring_full, not logged again",
+        s.stream->name(), s.stream->ring().capacity());
   }
   if (!s.said_refused && s.stream->refused() > 0) {
     s.said_refused = true;
-    spdlog::warn("recorder: stream '{}' was given a line longer than {} bytes or holding a newline; such lines are "
-                 "refused and counted on STATUS as recorder_lines_refused, not logged again",
-                 s.stream->name(), RecorderStream::kMaxLineBytes);
+    spdlog::warn(
+        "recorder: stream '{}' was given a line longer than {} bytes or holding a newline; such lines are "
+        "refused and counted on STATUS as recorder_lines_refused, not logged again",
+        s.stream->name(), RecorderStream::kMaxLineBytes);
   }
 }
 

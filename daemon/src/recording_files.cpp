@@ -1,15 +1,15 @@
 #include "headingd/daemon/recording_files.hpp"
 
-#include <ctime>
-#include <sstream>
 #include <toml++/toml.h>
 #include <unistd.h>
+#include <ctime>
+#include <sstream>
 
 #include "headingd/core/toml_document.hpp"
+#include "headingd/daemon/can_imu_source.hpp"
 #include "headingd/daemon/clocks.hpp"
 #include "headingd/files/gzip_file.hpp"
 #include "headingd/recording/recording_format.hpp"
-#include "headingd/daemon/can_imu_source.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -48,7 +48,8 @@ RecordingStart recordingStartNow(std::string program_version) {
   return s;
 }
 
-std::vector<std::pair<std::string, std::string>> recordingFiles(const DaemonConfig& config, const RecordingStart& start) {
+std::vector<std::pair<std::string, std::string>> recordingFiles(const DaemonConfig& config,
+                                                                const RecordingStart& start) {
   using namespace recording;
   std::vector<std::pair<std::string, std::string>> files;
   toml::table doc = core::parseTomlDocument(config.text, config.source);

@@ -1,7 +1,7 @@
 #include "headingd/daemon/recording_source.hpp"
 
-#include <chrono>
 #include <spdlog/spdlog.h>
+#include <chrono>
 
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/clocks.hpp"
@@ -35,9 +35,9 @@ std::unique_ptr<SourceConfig> parseRecordingSource(const SourceTable& table) {
 
 std::unique_ptr<Source> createRecordingSource(const SourceConfig& config, SourceContext& context) {
   const auto& c = static_cast<const RecordingSourceConfig&>(config);
-  auto source = std::make_unique<RecordingSource>(c.table, c.dir, context.playback.at_end, context.playback_clock,
-                                                  context.source_index, context.addImuRing(c.table),
-                                                  context.addGpsRing(c.table));
+  auto source =
+      std::make_unique<RecordingSource>(c.table, c.dir, context.playback.at_end, context.playback_clock,
+                                        context.source_index, context.addImuRing(c.table), context.addGpsRing(c.table));
   spdlog::info("source recording: {}", c.dir);
   context.logStartsAt(source->firstLogNs());
   return source;
@@ -79,9 +79,10 @@ bool RecordingSource::pushStep(const recording::RecordingStep& step, std::int64_
       return tryPush(*gps_ring_, e);
     }
     case Kind::kCalibrationReloaded:
-      spdlog::warn("recording {}: the live run re-read its calibration after {} IMU samples (SIGHUP); this replay "
-                   "keeps the calibration recorded at the start, so its estimates from here on may differ",
-                   setup_.folder, imu_pushed_);
+      spdlog::warn(
+          "recording {}: the live run re-read its calibration after {} IMU samples (SIGHUP); this replay "
+          "keeps the calibration recorded at the start, so its estimates from here on may differ",
+          setup_.folder, imu_pushed_);
       return true;
   }
   return true;
@@ -125,10 +126,11 @@ void RecordingSource::finish(const std::string& error) {
     std::lock_guard lock(error_mutex_);
     error_ = error;
   } else if (!reader_->complete()) {
-    spdlog::warn("recording {} is incomplete ({} lines lost by the recorder, {} unreadable{}{}): the estimates "
-                 "are not expected to equal the live run's everywhere",
-                 setup_.folder, c.lost_lines, c.bad_lines, c.first_bad_line.empty() ? "" : ", first: ",
-                 c.first_bad_line, c.start_missing ? "; its first segments were deleted by the size cap" : "");
+    spdlog::warn(
+        "recording {} is incomplete ({} lines lost by the recorder, {} unreadable{}{}): the estimates "
+        "are not expected to equal the live run's everywhere",
+        setup_.folder, c.lost_lines, c.bad_lines, c.first_bad_line.empty() ? "" : ", first: ", c.first_bad_line,
+        c.start_missing ? "; its first segments were deleted by the size cap" : "");
   }
   spdlog::info("recording {} played: {} IMU samples, {} GPS epochs", setup_.folder, c.imu_samples, c.gps_epochs);
   finished_.store(true);

@@ -19,9 +19,8 @@ std::unique_ptr<SourceConfig> parseSerialGpsSource(const SourceTable& table) {
 
 std::unique_ptr<Source> createSerialGpsSource(const SourceConfig& config, SourceContext& context) {
   const nmea::SerialGpsConfig& gps = static_cast<const SerialGpsSourceConfig&>(config).gps;
-  auto source =
-      std::make_unique<SerialGpsSource>(config.table, gps, context.source_index, context.addGpsRing(config.table),
-                                        context.recorder);
+  auto source = std::make_unique<SerialGpsSource>(config.table, gps, context.source_index,
+                                                  context.addGpsRing(config.table), context.recorder);
   spdlog::info("source gps: {} at {} baud", gps.device, gps.baud);
   return source;
 }

@@ -121,8 +121,9 @@ SourceConfigs parseSourceTables(const toml::table& doc, const std::string& sourc
   const auto* recording = configs.find<RecordingSourceConfig>();
   if (configs.playback.at_end == AtEnd::kLoop && recording != nullptr && recording->enabled) {
     core::TomlTableReader(core::tableOf(doc, "playback", source), source, "playback")
-        .fail("at_end", "\"loop\" plays [candump_log] and [nmea_log] again and again; a [recording] is replayed "
-                        "once, as it ran: use \"stay\" or \"exit\"");
+        .fail("at_end",
+              "\"loop\" plays [candump_log] and [nmea_log] again and again; a [recording] is replayed "
+              "once, as it ran: use \"stay\" or \"exit\"");
   }
   return configs;
 }
@@ -144,9 +145,8 @@ std::vector<std::unique_ptr<Source>> makeSources(const SourceConfigs& configs, S
 }
 
 bool usesLogClock(const SourceConfigs& configs) {
-  return std::any_of(configs.tables.begin(), configs.tables.end(), [](const auto& c) {
-    return c->enabled && timeAxisOf(*c) == TimeAxis::kLogClock;
-  });
+  return std::any_of(configs.tables.begin(), configs.tables.end(),
+                     [](const auto& c) { return c->enabled && timeAxisOf(*c) == TimeAxis::kLogClock; });
 }
 
 SampleRing<ImuRingEntry>* SourceContext::addImuRing(const std::string& source_name) {

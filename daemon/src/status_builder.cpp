@@ -14,8 +14,7 @@ using core::kDegPerRad;
 double us(double ns) { return ns * 1e-3; }
 
 // Sets entry i, reusing its name string when the name is unchanged (every STATUS but the first).
-void setCounter(std::vector<headingd::counter_t>& counters, std::size_t i, std::string_view name,
-                std::uint64_t value) {
+void setCounter(std::vector<headingd::counter_t>& counters, std::size_t i, std::string_view name, std::uint64_t value) {
   if (i >= counters.size()) counters.resize(i + 1);
   if (counters[i].name != name) counters[i].name = name;
   counters[i].value = static_cast<std::int64_t>(value);
@@ -144,13 +143,15 @@ void fillCounters(status_t& m, const core::EstimatorCounters& estimator, const L
 
 void appendRecorderCounters(status_t& m, const RecorderCounters& recorder) {
   auto i = static_cast<std::size_t>(m.num_counters);
-  forEachRecorderCounter(recorder, [&](std::string_view name, std::uint64_t value) { setCounter(m.counters, i++, name, value); });
+  forEachRecorderCounter(recorder,
+                         [&](std::string_view name, std::uint64_t value) { setCounter(m.counters, i++, name, value); });
   m.num_counters = static_cast<std::int32_t>(i);
 }
 
 void appendNmeaOutCounters(status_t& m, const NmeaOutCounters& nmea_out) {
   auto i = static_cast<std::size_t>(m.num_counters);
-  forEachNmeaOutCounter(nmea_out, [&](std::string_view name, std::uint64_t value) { setCounter(m.counters, i++, name, value); });
+  forEachNmeaOutCounter(nmea_out,
+                        [&](std::string_view name, std::uint64_t value) { setCounter(m.counters, i++, name, value); });
   m.num_counters = static_cast<std::int32_t>(i);
 }
 

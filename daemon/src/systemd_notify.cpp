@@ -1,7 +1,7 @@
 #include "headingd/daemon/systemd_notify.hpp"
 
-#include <cstdlib>
 #include <systemd/sd-daemon.h>
+#include <cstdlib>
 
 namespace headingd::daemon {
 

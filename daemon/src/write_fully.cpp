@@ -1,7 +1,7 @@
 #include "headingd/daemon/write_fully.hpp"
 
-#include <cerrno>
 #include <unistd.h>
+#include <cerrno>
 
 namespace headingd::daemon {
 

@@ -104,14 +104,18 @@ void expectError(const std::string& text, const std::string& fragment) {
 
 TEST(CalibrationFile, ErrorsNameFileLineKeyAndExpectation) {
   expectError("[magnetometer]\nD = [[1, 0, 0], [0, 1, 0]]\n", "calib.toml:2: [magnetometer] D: expected a 3x3 matrix");
-  expectError("[magnetometer]\nD = [[1, 0, 0], [0, 1, 0], [2, 0, 0]]\n", "calib.toml:2: [magnetometer] D: expected an invertible");
-  expectError("[magnetometer]\noffset_uT = [1, 2]\n", "calib.toml:2: [magnetometer] offset_uT: expected an array of 3 numbers in uT");
+  expectError("[magnetometer]\nD = [[1, 0, 0], [0, 1, 0], [2, 0, 0]]\n",
+              "calib.toml:2: [magnetometer] D: expected an invertible");
+  expectError("[magnetometer]\noffset_uT = [1, 2]\n",
+              "calib.toml:2: [magnetometer] offset_uT: expected an array of 3 numbers in uT");
   expectError("[magnetometer]\noffset_uT = [1, \"a\", 2]\n", "offset_uT: expected an array of 3 numbers");
-  expectError("[magnetometer]\nfield_norm_source = \"guess\"\n", "calib.toml:2: [magnetometer] field_norm_source: expected \"wmm\"");
+  expectError("[magnetometer]\nfield_norm_source = \"guess\"\n",
+              "calib.toml:2: [magnetometer] field_norm_source: expected \"wmm\"");
   expectError("\n[gyroscope]\nscale = [1, 0, 1]\n", "calib.toml:3: [gyroscope] scale: expected positive scale factors");
   expectError("[gyroscope]\nbias = [0, 0, 0]\n", "calib.toml:2: [gyroscope] bias: unknown key (expected one of");
   expectError("[magnetometre]\n", "calib.toml:1: unknown table or key 'magnetometre'");
-  expectError("[calibration]\nsample_range = [5, 2]\n", "calib.toml:2: [calibration] sample_range: expected [first, end)");
+  expectError("[calibration]\nsample_range = [5, 2]\n",
+              "calib.toml:2: [calibration] sample_range: expected [first, end)");
   expectError("[magnetometer]\nD = \n", "calib.toml:2: TOML syntax error");
   expectError("magnetometer = 3\n", "calib.toml:1: 'magnetometer' must be a table");
 }

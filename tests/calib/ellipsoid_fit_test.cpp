@@ -43,8 +43,8 @@ TEST(EllipsoidFit, RecoversTableTwoDistortionsFromTheShortRotation) {
   }
   std::sort(shape.begin(), shape.end());
   std::sort(offset.begin(), offset.end());
-  EXPECT_LT(shape[5], 0.10);   // relative error of D Dᵀ, D_ii up to 1.5, skew up to 30°
-  EXPECT_LT(offset[5], 2.5);   // µT; the offsets drawn are up to ±52 µT per axis
+  EXPECT_LT(shape[5], 0.10);  // relative error of D Dᵀ, D_ii up to 1.5, skew up to 30°
+  EXPECT_LT(offset[5], 2.5);  // µT; the offsets drawn are up to ±52 µT per axis
 }
 
 TEST(EllipsoidFit, HandHeldRecordingIsTighter) {

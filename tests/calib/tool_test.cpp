@@ -81,8 +81,7 @@ TEST(CalibrateTool, EllipsoidCalibrationMakesHeadingsBetter) {
             0);
   const core::ImuCalibration c = core::parseImuCalibration(readText(dir / "c.toml"), "c.toml");
   EXPECT_EQ(c.mag.field_norm_source, core::FieldNormSource::kWmm);
-  const core::Mat3 dd = c.mag.D * c.mag.D.transpose(),
-                   dd_true = walk.mag.distortion * walk.mag.distortion.transpose();
+  const core::Mat3 dd = c.mag.D * c.mag.D.transpose(), dd_true = walk.mag.distortion * walk.mag.distortion.transpose();
   EXPECT_LT((dd - dd_true).norm() / dd_true.norm(), 0.02);
   EXPECT_LT((c.mag.offset_uT - walk.mag.offset).norm(), 0.5);
   EXPECT_TRUE(fs::exists(dir / "report" / "index.html"));

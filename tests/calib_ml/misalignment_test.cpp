@@ -22,7 +22,8 @@ TEST(Misalignment, RecoversRotationAndDipFromExactData) {
   std::vector<Vec3> u, v;
   for (int i = 0; i < 400; ++i) {
     const double t = 0.05 * i;
-    const Quat q_nb(Eigen::AngleAxisd(1.3 * t, Vec3::UnitZ()) * Eigen::AngleAxisd(0.9 * std::sin(0.7 * t), Vec3::UnitY()) *
+    const Quat q_nb(Eigen::AngleAxisd(1.3 * t, Vec3::UnitZ()) *
+                    Eigen::AngleAxisd(0.9 * std::sin(0.7 * t), Vec3::UnitY()) *
                     Eigen::AngleAxisd(2.1 * t, Vec3::UnitX()));
     const Vec3 m_b = q_nb.conjugate() * m_n;
     v.push_back(q_nb.conjugate() * Vec3::UnitZ());
@@ -44,7 +45,8 @@ TEST(Misalignment, ExpectedDipSignPicksBetweenTheMirrorMinima) {
   std::vector<Vec3> u, v;
   for (int i = 0; i < 300; ++i) {
     const double t = 0.01 * i;
-    const Quat q_nb(Eigen::AngleAxisd(0.8 * t, Vec3::UnitZ()) * Eigen::AngleAxisd(0.3 * std::sin(2.0 * t), Vec3::UnitY()) *
+    const Quat q_nb(Eigen::AngleAxisd(0.8 * t, Vec3::UnitZ()) *
+                    Eigen::AngleAxisd(0.3 * std::sin(2.0 * t), Vec3::UnitY()) *
                     Eigen::AngleAxisd(0.25 * std::cos(1.5 * t), Vec3::UnitX()));
     v.push_back(q_nb.conjugate() * Vec3::UnitZ());
     u.push_back(r_d * (q_nb.conjugate() * m_n));

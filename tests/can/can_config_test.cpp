@@ -41,7 +41,8 @@ void expectConfigError(const std::string& can_table, const std::string& fragment
 }
 
 const std::string kGood =
-    "[can]\ndbc = \"imu.dbc\"\ngyro = [\"GYRO.X\", \"-GYRO.Y\", \"GYRO.Z\"]\naccel = [\"ACC.X\", \"ACC.Y\", \"ACC.Z\"]\n";
+    "[can]\ndbc = \"imu.dbc\"\ngyro = [\"GYRO.X\", \"-GYRO.Y\", \"GYRO.Z\"]\naccel = [\"ACC.X\", \"ACC.Y\", "
+    "\"ACC.Z\"]\n";
 
 TEST(CanConfig, ShippedExamplesLoadAndResolve) {
   for (const char* name : {"can-headingd.toml", "can-openimu.toml"}) {
@@ -69,21 +70,30 @@ TEST(CanConfig, DefaultsAndRelativeDbcPath) {
 TEST(CanConfig, ErrorsNameFileLineKey) {
   expectConfigError("[can]\ndbc = \"imu.dbc\"\nbogus = 1\n", "c.toml:6: [can] bogus: unknown key");
   expectConfigError("[can]\ngyro = [\"GYRO.X\", \"GYRO.Y\", \"GYRO.Z\"]\n", "c.toml:4: [can]: missing key 'dbc'");
-  expectConfigError(kGood + "epoch_window_s = 5\n", "c.toml:8: [can] epoch_window_s: 5 is out of range, expected 1e-05 .. 1 s");
+  expectConfigError(kGood + "epoch_window_s = 5\n",
+                    "c.toml:8: [can] epoch_window_s: 5 is out of range, expected 1e-05 .. 1 s");
   expectConfigError(kGood + "j1939 = \"yes\"\n", "c.toml:8: [can] j1939: expected true or false");
-  expectConfigError("[can]\ndbc = \"imu.dbc\"\ngyro = [\"GYRO.X\", \"GYRO.Y\"]\n", "c.toml:6: [can] gyro: expected an array of 3 signals");
-  expectConfigError("[can]\ndbc = \"imu.dbc\"\ngyro = [\"GYRO\", \"GYRO.Y\", \"GYRO.Z\"]\n", "'GYRO' is not a signal reference");
+  expectConfigError("[can]\ndbc = \"imu.dbc\"\ngyro = [\"GYRO.X\", \"GYRO.Y\"]\n",
+                    "c.toml:6: [can] gyro: expected an array of 3 signals");
+  expectConfigError("[can]\ndbc = \"imu.dbc\"\ngyro = [\"GYRO\", \"GYRO.Y\", \"GYRO.Z\"]\n",
+                    "'GYRO' is not a signal reference");
   expectConfigError(kGood + "mag = [\"MAG.X\", \"MAG.Y\", \"MAG.Z\"]\n",
                     "c.toml:8: [can] mag: 'MAG.X': expected a message (BO_) of");
   expectConfigError(kGood + "mag = [\"GYRO.Odd\", \"GYRO.Odd\", \"GYRO.Odd\"]\n",
                     "c.toml:8: [can] mag: 'GYRO.Odd': unit \"furlong\"");
-  expectConfigError("[can]\ndbc = \"imu.dbc\"\ngyro = [\"GYRO.X\", \"GYRO.Y\", \"GYRO.W\"]\naccel = [\"ACC.X\", \"ACC.Y\", \"ACC.Z\"]\n",
-                    "c.toml:6: [can] gyro: 'GYRO.W': expected a signal (SG_) of message GYRO");
+  expectConfigError(
+      "[can]\ndbc = \"imu.dbc\"\ngyro = [\"GYRO.X\", \"GYRO.Y\", \"GYRO.W\"]\naccel = [\"ACC.X\", \"ACC.Y\", "
+      "\"ACC.Z\"]\n",
+      "c.toml:6: [can] gyro: 'GYRO.W': expected a signal (SG_) of message GYRO");
   expectConfigError(kGood + "j1939 = true\n", "j1939 = true expects 29-bit ids");
-  expectConfigError(kGood + "sequence = [\"GYRO.Seq\", \"ACC.Seq\"]\n", "expected the same width as the other counters (8 bits)");
-  expectConfigError(kGood + "reconnect_initial_s = 2\nreconnect_max_s = 1\n", "c.toml:9: [can] reconnect_max_s: expected a value >= reconnect_initial_s");
-  expectConfigError("[can]\ndbc = \"missing.dbc\"\ngyro = [\"GYRO.X\", \"GYRO.Y\", \"GYRO.Z\"]\naccel = [\"ACC.X\", \"ACC.Y\", \"ACC.Z\"]\n",
-                    "c.toml:5: [can] dbc: expected a readable DBC file");
+  expectConfigError(kGood + "sequence = [\"GYRO.Seq\", \"ACC.Seq\"]\n",
+                    "expected the same width as the other counters (8 bits)");
+  expectConfigError(kGood + "reconnect_initial_s = 2\nreconnect_max_s = 1\n",
+                    "c.toml:9: [can] reconnect_max_s: expected a value >= reconnect_initial_s");
+  expectConfigError(
+      "[can]\ndbc = \"missing.dbc\"\ngyro = [\"GYRO.X\", \"GYRO.Y\", \"GYRO.Z\"]\naccel = [\"ACC.X\", \"ACC.Y\", "
+      "\"ACC.Z\"]\n",
+      "c.toml:5: [can] dbc: expected a readable DBC file");
   expectConfigError("[can]\ndbc = 3\n", "c.toml:5: [can] dbc: expected the path of a DBC file");
   expectConfigError("[can\n", "c.toml:4: TOML syntax error");
   expectConfigError(kGood + "gyro_unit_factor = 0\n", "c.toml:8: [can] gyro_unit_factor: expected a non-zero factor");

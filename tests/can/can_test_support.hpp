@@ -1,11 +1,11 @@
 #pragma once
 // Helpers for the CAN tests: the shipped configuration files, temporary files, frames.
+#include <unistd.h>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <string>
-#include <unistd.h>
 
 #include "headingd/can/can_frame.hpp"
 

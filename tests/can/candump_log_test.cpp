@@ -69,7 +69,8 @@ TEST(CandumpLog, RejectsBadLinesWithAReason) {
       "(1.0) can0 4FFFFFFF#00",
       "(1.0) can0 123#0",
       "(1.0) can0 123#GG",
-      "(1.0) c\x05" "n0 123#00",  // a control byte in the interface name
+      "(1.0) c\x05"
+      "n0 123#00",  // a control byte in the interface name
       "(1.0) can0 123#001122334455667788",
       "(1.0) can0 123##1DEADBEEF",
       "(1.0) can0 123#00 extra words",

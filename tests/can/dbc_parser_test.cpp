@@ -98,7 +98,8 @@ TEST(DbcParser, ErrorsNameLineAndExpectation) {
   expectError("BO_ 12 A: 8 X\n SG_ S : 0|8@1+ (1;0) [0|0] \"\" X\n", "bad.dbc:2: expected ',' between factor");
   expectError("BO_ 12 A: 8 X\n SG_ S : 0|8@1+ (1,0) [0|0] deg X\n", "bad.dbc:2: expected the unit in double quotes");
   expectError("BO_ 12 A: 8 X\n SG_ S : 0|0@1+ (1,0) [0|0] \"\" X\n", "signal length of 1..64");
-  expectError("BO_ 12 A: 2 X\n SG_ S : 8|16@1+ (1,0) [0|0] \"\" X\n", "bad.dbc:2: expected a signal inside the message's 2 bytes (it needs 3)");
+  expectError("BO_ 12 A: 2 X\n SG_ S : 8|16@1+ (1,0) [0|0] \"\" X\n",
+              "bad.dbc:2: expected a signal inside the message's 2 bytes (it needs 3)");
   expectError("BO_ 12 A: 8 X\n SG_ S : 7|16@0+ (1,0) [0|0] \"\" X\n SG_ S : 0|8@1+ (1,0) [0|0] \"\" X\n",
               "bad.dbc:3: expected a signal name not used before");
   expectError("BO_ 12 A: 8 X\nBO_ 12 B: 8 X\n", "bad.dbc:2: expected a message id not used before (line 1)");

@@ -151,7 +151,7 @@ TEST(EpochAssembler, LostFramesAreCountedNotInvented) {
   Collector c;
   for (int k = 0; k < 10; ++k) {
     auto frames = fx.epoch(k);
-    if (k == 4) frames.erase(frames.begin());  // gyro frame lost
+    if (k == 4) frames.erase(frames.begin());      // gyro frame lost
     if (k == 7) frames.erase(frames.begin() + 1);  // accel frame lost
     for (const auto& f : frames) c.take(a.push(f));
   }
@@ -336,7 +336,8 @@ TEST(EpochAssembler, RandomFrameSoupNeverCrashesAndBalancesCounters) {
   const auto& n = a.counters();
   EXPECT_EQ(n.samples, released);
   EXPECT_EQ(n.frames, 50000u);
-  EXPECT_EQ(n.frames, n.decoded_frames + n.unknown_id_frames + n.wrong_length_frames + n.remote_frames + n.error_frames);
+  EXPECT_EQ(n.frames,
+            n.decoded_frames + n.unknown_id_frames + n.wrong_length_frames + n.remote_frames + n.error_frames);
 }
 
 }  // namespace

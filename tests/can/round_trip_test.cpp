@@ -100,9 +100,8 @@ TEST(CandumpFromCsvTool, WritesALogThatReplaysToTheCsv) {
   expectMatches(csv, r, 1'700'000'000'000'000'000LL, 2);
   // Bad configuration: non-zero exit and a message naming the file.
   const std::string bad = dir.write("bad.toml", "[can]\ndbc = \"nothing.dbc\"\n");
-  const std::string bad_command = std::string(HEADINGD_CANDUMP_FROM_CSV_BIN) + " --imu-csv " +
-                                  HEADINGD_DEMO_IMU_CSV + " --can-config " + bad + " --out " + log_path + " 2> " +
-                                  dir.path() + "/stderr.txt";
+  const std::string bad_command = std::string(HEADINGD_CANDUMP_FROM_CSV_BIN) + " --imu-csv " + HEADINGD_DEMO_IMU_CSV +
+                                  " --can-config " + bad + " --out " + log_path + " 2> " + dir.path() + "/stderr.txt";
   EXPECT_NE(std::system(bad_command.c_str()), 0);
   std::ifstream err(dir.path() + "/stderr.txt");
   const std::string message((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());

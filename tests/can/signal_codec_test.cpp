@@ -27,8 +27,8 @@ constexpr auto BE = ByteOrder::big_endian;
 TEST(SignalCodec, IntelWithinAndAcrossBytes) {
   const Payload d{0x34, 0x12, 0xF0, 0x0F, 0xAB, 0x00, 0x00, 0x80};
   EXPECT_EQ(extractRawBits(sig(0, 16, LE, false), d), 0x1234u);
-  EXPECT_EQ(extractRawBits(sig(4, 12, LE, false), d), 0x123u);    // high nibble of byte 0, all of byte 1
-  EXPECT_EQ(extractRawBits(sig(20, 8, LE, false), d), 0xFFu);     // nibble 2.hi + nibble 3.lo
+  EXPECT_EQ(extractRawBits(sig(4, 12, LE, false), d), 0x123u);  // high nibble of byte 0, all of byte 1
+  EXPECT_EQ(extractRawBits(sig(20, 8, LE, false), d), 0xFFu);   // nibble 2.hi + nibble 3.lo
   EXPECT_EQ(extractRawBits(sig(63, 1, LE, false), d), 1u);
   EXPECT_EQ(extractRaw(sig(32, 8, LE, true), d), static_cast<std::int64_t>(0xAB) - 256);
   EXPECT_EQ(extractRawBits(sig(0, 64, LE, false), d), 0x800000AB0FF01234ull);
@@ -39,13 +39,14 @@ TEST(SignalCodec, IntelWithinAndAcrossBytes) {
 TEST(SignalCodec, MotorolaDbcNumbering) {
   // Start bit = MSB in DBC numbering (bit 7 of byte 0 is 7, bit 0 of byte 1 is 8).
   const Payload d{0x12, 0x34, 0x56, 0x78, 0x9A, 0xBC, 0xDE, 0xF0};
-  EXPECT_EQ(extractRawBits(sig(7, 16, BE, false), d), 0x1234u);   // byte 0 then byte 1
-  EXPECT_EQ(extractRawBits(sig(3, 12, BE, false), d), 0x234u);    // low nibble of byte 0, then byte 1
+  EXPECT_EQ(extractRawBits(sig(7, 16, BE, false), d), 0x1234u);           // byte 0 then byte 1
+  EXPECT_EQ(extractRawBits(sig(3, 12, BE, false), d), 0x234u);            // low nibble of byte 0, then byte 1
   EXPECT_EQ(extractRawBits(sig(4, 3, BE, false), d), (0x12u >> 2) & 7u);  // bits 4..2 of byte 0
-  EXPECT_EQ(extractRawBits(sig(0, 2, BE, false), d), ((0x12u & 1u) << 1) | (0x34u >> 7));  // bit 0 of byte 0, bit 7 of byte 1
+  EXPECT_EQ(extractRawBits(sig(0, 2, BE, false), d),
+            ((0x12u & 1u) << 1) | (0x34u >> 7));  // bit 0 of byte 0, bit 7 of byte 1
   EXPECT_EQ(extractRawBits(sig(15, 8, BE, false), d), 0x34u);
   EXPECT_EQ(extractRawBits(sig(7, 64, BE, false), d), 0x123456789ABCDEF0ull);
-  EXPECT_EQ(extractRawBits(sig(56, 1, BE, false), d), 0u);   // bit 0 of byte 7 (0xF0)
+  EXPECT_EQ(extractRawBits(sig(56, 1, BE, false), d), 0u);    // bit 0 of byte 7 (0xF0)
   EXPECT_EQ(extractRawBits(sig(63, 4, BE, false), d), 0xFu);  // top nibble of byte 7
   EXPECT_EQ(signalBytesNeeded(sig(7, 16, BE, false)), 2u);
   EXPECT_EQ(signalBytesNeeded(sig(0, 2, BE, false)), 2u);

@@ -14,8 +14,8 @@
 
 #include <atomic>
 #include <boost/asio/executor_work_guard.hpp>
-#include <boost/asio/post.hpp>
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/post.hpp>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -56,8 +56,7 @@ class Sender {
   bool ok() const { return fd_ >= 0; }
   bool send(const CanFrame& f) {
     can_frame k{};
-    k.can_id = f.error_frame ? (f.id | CAN_ERR_FLAG)
-                             : f.extended ? (f.id | CAN_EFF_FLAG) : f.id;
+    k.can_id = f.error_frame ? (f.id | CAN_ERR_FLAG) : f.extended ? (f.id | CAN_EFF_FLAG) : f.id;
     if (f.remote) k.can_id |= CAN_RTR_FLAG;
     k.len = f.len;
     std::memcpy(k.data, f.data.data(), 8);
@@ -272,7 +271,7 @@ TEST_F(Vcan, ErrorFramesAreReceivedAndCounted) {
   e.len = 8;
   e.id = 0x40;  // CAN_ERR_BUSOFF
   ASSERT_TRUE(tx.send(e));
-  e.id = 0x04;  // CAN_ERR_CRTL
+  e.id = 0x04;       // CAN_ERR_CRTL
   e.data[1] = 0x10;  // CAN_ERR_CRTL_RX_PASSIVE
   ASSERT_TRUE(tx.send(e));
   ASSERT_TRUE(rx.waitFor([&] { return rx.status().bus.error_frames >= 2; }, 2000ms))
@@ -324,8 +323,8 @@ TEST_F(Vcan, FloodAtFullBusRateWithoutLoss) {
     ASSERT_EQ(got, i) << "frames lost or reordered";
   }
   EXPECT_EQ(rx.status().kernel_drops, 0u);
-  std::printf("flood: %d frames in %.3f s (%.0f frames/s), receive buffer %d bytes\n", kTotal, send_s,
-              kTotal / send_s, rx.status().receive_buffer_bytes);
+  std::printf("flood: %d frames in %.3f s (%.0f frames/s), receive buffer %d bytes\n", kTotal, send_s, kTotal / send_s,
+              rx.status().receive_buffer_bytes);
 }
 
 TEST_F(Vcan, InterfaceDownAndUpIsSurvived) {
@@ -378,8 +377,10 @@ int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg.rfind("--vcan=", 0) == 0) g_vcan = arg.substr(7);
-    else if (arg.rfind("--vcan-spare=", 0) == 0) g_spare = arg.substr(13);
+    if (arg.rfind("--vcan=", 0) == 0)
+      g_vcan = arg.substr(7);
+    else if (arg.rfind("--vcan-spare=", 0) == 0)
+      g_spare = arg.substr(13);
   }
   return RUN_ALL_TESTS();
 }

@@ -57,7 +57,7 @@ class CanFrameSender {
   // Flood (true) or play at the log's pace (false); changes take effect within one frame.
   void setFlood(bool flood) { flood_.store(flood); }
 
-  std::uint64_t sent() const { return sent_.load(); }            // frames the socket took
+  std::uint64_t sent() const { return sent_.load(); }               // frames the socket took
   std::uint64_t sendErrors() const { return send_errors_.load(); }  // writes refused (interface down)
 
  private:

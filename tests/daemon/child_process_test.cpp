@@ -15,7 +15,8 @@ bool processEnded(pid_t pid) {
   if (!stat) return true;
   std::string text((std::istreambuf_iterator<char>(stat)), {});
   const std::size_t after_name = text.rfind(')');  // the name may hold spaces and parentheses
-  return after_name == std::string::npos || text.substr(after_name + 2, 1) == "Z" || text.substr(after_name + 2, 1) == "X";
+  return after_name == std::string::npos || text.substr(after_name + 2, 1) == "Z" ||
+         text.substr(after_name + 2, 1) == "X";
 }
 
 TEST(ChildProcess, DiesWithTheProcessThatStartedItEvenWithoutItsDestructor) {

@@ -139,7 +139,8 @@ TEST_F(DaemonConfigErrors, WhatIsNoRegularFileOrTooLargeIsRefusedNamingTheKey) {
       << zero;
   ASSERT_EQ(::mkfifo(dir.file("fifo.log").c_str(), 0600), 0);
   const std::string fifo = errorOf(dir, "[candump_log]\nenabled = true\npath = \"fifo.log\"\ncan_config = \"x\"\n");
-  EXPECT_NE(fifo.find(at(3) + "[candump_log] path: " + dir.file("fifo.log") + ": is a FIFO"), std::string::npos) << fifo;
+  EXPECT_NE(fifo.find(at(3) + "[candump_log] path: " + dir.file("fifo.log") + ": is a FIFO"), std::string::npos)
+      << fifo;
   const std::string folder = errorOf(dir, "[imu_csv]\nenabled = true\npath = \".\"\n");
   EXPECT_NE(folder.find("[imu_csv] path: " + dir.file(".") + ": is a directory, not a file"), std::string::npos)
       << folder;
@@ -153,7 +154,8 @@ TEST_F(DaemonConfigErrors, WhatIsNoRegularFileOrTooLargeIsRefusedNamingTheKey) {
 
 TEST_F(DaemonConfigErrors, ChannelsMustDifferAndBeNames) {
   const std::string same = errorOf(dir, "[lcm]\nimu_channel = \"HEADING\"\n");
-  EXPECT_NE(same.find(at(2) + "[lcm] imu_channel: 'HEADING' is already the heading_channel"), std::string::npos) << same;
+  EXPECT_NE(same.find(at(2) + "[lcm] imu_channel: 'HEADING' is already the heading_channel"), std::string::npos)
+      << same;
   const std::string space = errorOf(dir, "[lcm]\nstatus_channel = \"MY STATUS\"\n");
   EXPECT_NE(space.find(at(2) + "[lcm] status_channel"), std::string::npos) << space;
   const std::string url = errorOf(dir, "[lcm]\nurl = \"http://x\"\n");
@@ -171,9 +173,11 @@ TEST_F(DaemonConfigErrors, FileTimeCannotMixWithLiveSources) {
   dir.write("imu.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.81\n");
   const std::string e = errorOf(dir, "[imu_csv]\nenabled = true\npath = \"imu.csv\"\n[gps]\ndevice = \"/dev/null\"\n");
   EXPECT_NE(e.find(at(2) + "[imu_csv] enabled: a file source on its own time axis cannot run together"),
-            std::string::npos) << e;
-  EXPECT_EQ(errorOf(dir, "[imu_csv]\nenabled = true\npath = \"imu.csv\"\ntime_axis = \"monotonic\"\n"
-                         "[gps]\ndevice = \"/dev/null\"\n"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(errorOf(dir,
+                    "[imu_csv]\nenabled = true\npath = \"imu.csv\"\ntime_axis = \"monotonic\"\n"
+                    "[gps]\ndevice = \"/dev/null\"\n"),
             "");
 }
 
@@ -234,7 +238,8 @@ TEST(DaemonConfig, ShippedDefaultsFileMatchesTheCompiledDefaults) {
 }
 
 TEST_F(DaemonConfigErrors, LogSourcesNameTheirKeys) {
-  EXPECT_NE(errorOf(dir, "[candump_log]\nenabled = true\n").find(dir.file("bad.toml") + ": [candump_log] path: expected the candump -l log"),
+  EXPECT_NE(errorOf(dir, "[candump_log]\nenabled = true\n")
+                .find(dir.file("bad.toml") + ": [candump_log] path: expected the candump -l log"),
             std::string::npos);
   dir.write("can.log", "(1.000000) can0 120#00\n");
   const std::string no_can = errorOf(dir, "[candump_log]\nenabled = true\npath = \"can.log\"\n");

@@ -21,8 +21,8 @@ constexpr int kFrames = 3000;  // the first 10 s of the demo log: 1000 epochs of
 
 // The first kFrames lines of the demo candump log.
 std::vector<std::string> demoCanLines(const TempDir& dir) {
-  const std::string cmd = std::string("zcat ") + kDemoCan + " | head -n " + std::to_string(kFrames) + " > " +
-                          dir.file("head.log");
+  const std::string cmd =
+      std::string("zcat ") + kDemoCan + " | head -n " + std::to_string(kFrames) + " > " + dir.file("head.log");
   EXPECT_EQ(std::system(cmd.c_str()), 0);
   std::vector<std::string> lines;
   std::istringstream in(test::readFile(dir.file("head.log")));
@@ -37,7 +37,9 @@ std::string joined(const std::vector<std::string>& lines) {
 }
 
 // "(1780315200.000000) can0 ..." with another time.
-std::string withTime(const std::string& line, const std::string& time) { return "(" + time + line.substr(line.find(')')); }
+std::string withTime(const std::string& line, const std::string& time) {
+  return "(" + time + line.substr(line.find(')'));
+}
 
 struct DaemonRun {
   int exit_code = -1;
@@ -53,9 +55,9 @@ struct DaemonRun {
 // Runs the daemon on `sources` (TOML tables) at `speed` until it exits by itself.
 DaemonRun runDaemon(const TempDir& dir, int port, const std::string& sources, double speed) {
   const std::string url = lcmUrl(port);
-  const std::string config = dir.write(
-      "headingd.toml", "[lcm]\nurl = \"" + url + "\"\n[daemon]\nstatus_period_s = 0.2\n[playback]\nspeed = " +
-                           std::to_string(speed) + "\nat_end = \"exit\"\n" + sources);
+  const std::string config =
+      dir.write("headingd.toml", "[lcm]\nurl = \"" + url + "\"\n[daemon]\nstatus_period_s = 0.2\n[playback]\nspeed = " +
+                                     std::to_string(speed) + "\nat_end = \"exit\"\n" + sources);
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   DaemonRun run;
@@ -73,8 +75,8 @@ DaemonRun runDaemon(const TempDir& dir, int port, const std::string& sources, do
 }
 
 std::string candumpSource(const std::string& path) {
-  return "[candump_log]\nenabled = true\npath = \"" + path + "\"\ncan_config = \"" HEADINGD_CONFIG_DIR
-         "/can-headingd.toml\"\n";
+  return "[candump_log]\nenabled = true\npath = \"" + path +
+         "\"\ncan_config = \"" HEADINGD_CONFIG_DIR "/can-headingd.toml\"\n";
 }
 
 TEST(DaemonBadLogs, CandumpFirstFrameAtZeroIsSkippedAndTheLogPlays) {

@@ -22,8 +22,8 @@ using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::LcmCollector;
 using test::lcmUrl;
-using test::waitUntil;
 using test::TempDir;
+using test::waitUntil;
 
 // lcm-gen declares its constants without a definition: copies that EXPECT_EQ may bind to.
 constexpr std::int8_t kNone = headingd::heading_t::VALIDITY_NONE;
@@ -38,7 +38,9 @@ std::string configText(const std::string& url, const std::string& body) {
   return "[lcm]\nurl = \"" + url + "\"\n" + body;
 }
 
-double steadyNow() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double steadyNow() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 template <class R>
 double rateHz(const std::vector<R>& v) {
@@ -54,8 +56,8 @@ struct ReplayRow {
 // headingd-replay's output for the same file, by sample time in µs.
 std::map<std::int64_t, ReplayRow> runReplay(const TempDir& dir) {
   const std::string out = dir.file("replay.csv");
-  const std::string cmd = std::string(HEADINGD_REPLAY_BIN) + " --imu-csv " + kTrial + " --out " + out + " 2>" +
-                          dir.file("replay.err");
+  const std::string cmd =
+      std::string(HEADINGD_REPLAY_BIN) + " --imu-csv " + kTrial + " --out " + out + " 2>" + dir.file("replay.err");
   EXPECT_EQ(std::system(cmd.c_str()), 0) << test::readFile(dir.file("replay.err"));
   std::map<std::int64_t, ReplayRow> rows;
   std::istringstream in(test::readFile(out));
@@ -76,9 +78,9 @@ std::map<std::int64_t, ReplayRow> runReplay(const TempDir& dir) {
 TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
   TempDir dir;
   const std::string url = lcmUrl(0);
-  const std::string config = dir.write(
-      "e2e.toml", configText(url, "[imu_csv]\nenabled = true\npath = \"" + std::string(kTrial) +
-                                      "\"\nspeed = 10.0\nat_end = \"exit\"\n"));
+  const std::string config =
+      dir.write("e2e.toml", configText(url, "[imu_csv]\nenabled = true\npath = \"" + std::string(kTrial) +
+                                                "\"\nspeed = 10.0\nat_end = \"exit\"\n"));
   LcmCollector lcm(url);
   const double start = steadyNow();
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
@@ -135,17 +137,38 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
   // The counters' names and order, as subscribers read them (status_builder.hpp).
   std::vector<std::string> counter_names;
   for (const auto& c : last.counters) counter_names.push_back(c.name);
-  EXPECT_EQ(counter_names,
-            (std::vector<std::string>{"samples_accepted", "gaps", "clock_jumps", "duplicate_time", "backwards_time",
-                                      "non_finite", "non_finite_mag", "out_of_range", "out_of_range_mag",
-                                      "imu_rejected", "bias_still_blocks", "mag_no_heading", "mag_disturbed",
-                                      "mag_heading_restores", "mag_calibration_set_aside",
-                                      "mag_calibration_taken_back", "state_recoveries", "accel_clipped", "qsf_mag_periods",
-                                      "qsf_mag_ms", "qsf_accel_periods", "qsf_accel_ms", "qsf_mag_updates",
-                                      "qsf_mag_updates_rejected", "mau_updates", "mau_updates_rejected",
-                                      "mau_updates_unverified", "gps_epochs",
-                                      "gps_epochs_used_for_declination", "gps_epochs_forced_out",
-                                      "gps_values_ignored", "log_write_errors"}));
+  EXPECT_EQ(counter_names, (std::vector<std::string>{"samples_accepted",
+                                                     "gaps",
+                                                     "clock_jumps",
+                                                     "duplicate_time",
+                                                     "backwards_time",
+                                                     "non_finite",
+                                                     "non_finite_mag",
+                                                     "out_of_range",
+                                                     "out_of_range_mag",
+                                                     "imu_rejected",
+                                                     "bias_still_blocks",
+                                                     "mag_no_heading",
+                                                     "mag_disturbed",
+                                                     "mag_heading_restores",
+                                                     "mag_calibration_set_aside",
+                                                     "mag_calibration_taken_back",
+                                                     "state_recoveries",
+                                                     "accel_clipped",
+                                                     "qsf_mag_periods",
+                                                     "qsf_mag_ms",
+                                                     "qsf_accel_periods",
+                                                     "qsf_accel_ms",
+                                                     "qsf_mag_updates",
+                                                     "qsf_mag_updates_rejected",
+                                                     "mau_updates",
+                                                     "mau_updates_rejected",
+                                                     "mau_updates_unverified",
+                                                     "gps_epochs",
+                                                     "gps_epochs_used_for_declination",
+                                                     "gps_epochs_forced_out",
+                                                     "gps_values_ignored",
+                                                     "log_write_errors"}));
   EXPECT_EQ(last.num_counters, static_cast<std::int32_t>(last.counters.size()));
   const std::string summary = test::readFile(dir.file("err"));
   EXPECT_NE(summary.find("\"imu_published\":" + std::to_string(kTrialSamples)), std::string::npos) << summary;
@@ -193,9 +216,10 @@ TEST(DaemonEndToEnd, NoImuDataGivesDegradedStatusAndStaleEstimates) {
   for (int i = 0; i < 100; ++i) csv += std::to_string(i * 0.01) + ",0.001,-0.002,0.0005,0.05,-0.03,9.81,20,1,45\n";
   dir.write("still.csv", csv);
   const std::string url = lcmUrl(1);
-  const std::string config = dir.write(
-      "degraded.toml", configText(url, "[daemon]\nimu_timeout_s = 0.3\nstatus_period_s = 0.2\n"
-                                       "[imu_csv]\nenabled = true\npath = \"still.csv\"\nat_end = \"stay\"\n"));
+  const std::string config =
+      dir.write("degraded.toml", configText(url,
+                                            "[daemon]\nimu_timeout_s = 0.3\nstatus_period_s = 0.2\n"
+                                            "[imu_csv]\nenabled = true\npath = \"still.csv\"\nat_end = \"stay\"\n"));
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   const bool degraded = waitUntil(
@@ -238,7 +262,8 @@ TEST(DaemonEndToEnd, NoImuDataGivesDegradedStatusAndStaleEstimates) {
 TEST(DaemonEndToEnd, WithoutAnySourceStatusIsDegradedAndNothingIsValid) {
   TempDir dir;
   const std::string url = lcmUrl(2);
-  const std::string config = dir.write("none.toml", configText(url, "[daemon]\nimu_timeout_s = 0.2\nstatus_period_s = 0.2\n"));
+  const std::string config =
+      dir.write("none.toml", configText(url, "[daemon]\nimu_timeout_s = 0.2\nstatus_period_s = 0.2\n"));
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   EXPECT_TRUE(waitUntil([&] { return lcm.status().size() >= 3; }, 5s)) << test::readFile(dir.file("err"));
@@ -289,8 +314,8 @@ TEST(DaemonEndToEnd, NotifiesSystemdPingsTheWatchdogAndStopsWithinOneSecondOnSig
   TempDir dir;
   NotifySocket notify(dir.file("notify"));
   const std::string url = lcmUrl(3);
-  const std::string config = dir.write(
-      "notify.toml", configText(url, "[imu_csv]\nenabled = true\npath = \"" + std::string(kTrial) + "\"\n"));
+  const std::string config =
+      dir.write("notify.toml", configText(url, "[imu_csv]\nenabled = true\npath = \"" + std::string(kTrial) + "\"\n"));
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"),
                       {"NOTIFY_SOCKET=" + dir.file("notify"), "WATCHDOG_USEC=200000"});
   EXPECT_TRUE(waitUntil([&] { return notify.count("READY=1") == 1; }, 3s)) << test::readFile(dir.file("err"));
@@ -324,11 +349,12 @@ TEST(DaemonEndToEnd, RealtimeSettingsRefusedAreReportedAndTheDaemonContinues) {
   if (std::system("unshare -r -n true 2>/dev/null") != 0) GTEST_SKIP() << "no user namespaces here";
   TempDir dir;
   const std::string config = dir.write(
-      "rt.toml", configText(lcmUrl(4), "[realtime]\nsched_fifo_priority = 50\ncpu_affinity = [1000]\nlock_memory = true\n"));
-  ChildProcess daemon({"/usr/bin/unshare", "-r", "-n", "sh", "-c",
-                       "ip link set lo up && ip route add 224.0.0.0/4 dev lo && exec \"$0\" --config \"$1\"",
-                       HEADINGD_BIN, config},
-                      dir.file("out"), dir.file("err"));
+      "rt.toml",
+      configText(lcmUrl(4), "[realtime]\nsched_fifo_priority = 50\ncpu_affinity = [1000]\nlock_memory = true\n"));
+  ChildProcess daemon(
+      {"/usr/bin/unshare", "-r", "-n", "sh", "-c",
+       "ip link set lo up && ip route add 224.0.0.0/4 dev lo && exec \"$0\" --config \"$1\"", HEADINGD_BIN, config},
+      dir.file("out"), dir.file("err"));
   std::this_thread::sleep_for(1s);
   EXPECT_EQ(daemon.waitFor(0ms), -1) << "still running: " << test::readFile(dir.file("err"));
   daemon.signal(SIGTERM);
@@ -352,7 +378,8 @@ TEST(DaemonEndToEnd, SighupReopensTheLogFile) {
   const std::string config =
       dir.write("log.toml", configText(lcmUrl(5), "[log]\nfile = \"headingd.log\"\n[daemon]\nimu_timeout_s = 0.1\n"));
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
-  ASSERT_TRUE(waitUntil([&] { return test::readFile(dir.file("headingd.log")).find("running:") != std::string::npos; }, 3s));
+  ASSERT_TRUE(
+      waitUntil([&] { return test::readFile(dir.file("headingd.log")).find("running:") != std::string::npos; }, 3s));
   std::filesystem::rename(dir.file("headingd.log"), dir.file("headingd.log.1"));
   daemon.signal(SIGHUP);
   EXPECT_TRUE(waitUntil([&] { return std::filesystem::exists(dir.file("headingd.log")); }, 2s));
@@ -385,8 +412,9 @@ TEST(DaemonEndToEnd, CalibrationIsAppliedAndABadReloadKeepsIt) {
     if (bad_reload) {
       dir.write("calib.toml", "[magnetometer]\noffset_uT = [1.0, -2.0]\n");  // two numbers: does not read
       daemon.signal(SIGHUP);
-      EXPECT_TRUE(waitUntil([&] { return test::readFile(dir.file(std::string(name) + ".err")).find("keeping") !=
-                                         std::string::npos; }, 3s));
+      EXPECT_TRUE(waitUntil(
+          [&] { return test::readFile(dir.file(std::string(name) + ".err")).find("keeping") != std::string::npos; },
+          3s));
       EXPECT_TRUE(waitUntil([&] { return lcm.imu().size() >= 400; }, 10s));
     }
     daemon.signal(SIGTERM);

@@ -28,10 +28,10 @@ using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::counter;
 using test::findSource;
-using test::statusCounter;
-using test::LcmCollector;
 using test::kDemoNmea;
+using test::LcmCollector;
 using test::lcmUrl;
+using test::statusCounter;
 using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
@@ -93,16 +93,14 @@ TEST_F(DaemonFaults, GpsPtyClosedAndAnotherBehindTheSamePathIsReconnectedAndCoun
 
   // Unplugged: the pty goes away.
   pty.reset();
-  ASSERT_TRUE(waitUntil([&] { return gpsSource() && gpsSource()->state != "running"; }, 5s))
-      << daemonLog();
+  ASSERT_TRUE(waitUntil([&] { return gpsSource() && gpsSource()->state != "running"; }, 5s)) << daemonLog();
   const auto unplugged = *gpsSource();
   printCounters("unplugged", unplugged);
 
   // Plugged in again: another pty, the same path (udev re-points /dev/gps0).
   pty.emplace();
   headingd::test::pointSymlink(link, pty->slavePath());
-  ASSERT_TRUE(waitUntil([&] { return gpsSource() && gpsSource()->state == "running"; }, 5s))
-      << daemonLog();
+  ASSERT_TRUE(waitUntil([&] { return gpsSource() && gpsSource()->state == "running"; }, 5s)) << daemonLog();
   for (int i = 6; i < 12; ++i) {
     writeText(*pty, epochs[static_cast<std::size_t>(i)]);
     std::this_thread::sleep_for(200ms);
@@ -147,7 +145,8 @@ TEST_F(DaemonFaults, StoppedForTwoSecondsItResumesCountsTheMissedTicksAndDoesNot
   const auto misses = after.deadline_misses - before.deadline_misses;
   double worst_jitter_us = 0.0;  // the STATUS window that held the stop
   for (const auto& s : lcm_->status()) worst_jitter_us = std::max(worst_jitter_us, s.message.tick_jitter_max_us);
-  std::fprintf(stderr, "after SIGCONT: %zu HEADING in the first 0.5 s, %zu in the next second; %lld deadlines missed, "
+  std::fprintf(stderr,
+               "after SIGCONT: %zu HEADING in the first 0.5 s, %zu in the next second; %lld deadlines missed, "
                "tick jitter max %.3f s; ticks %lld -> %lld\n",
                first_half_second, next_second, static_cast<long long>(misses), worst_jitter_us * 1e-6,
                static_cast<long long>(before.ticks), static_cast<long long>(after.ticks));

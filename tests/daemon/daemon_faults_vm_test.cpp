@@ -28,8 +28,8 @@ namespace {
 using namespace std::chrono_literals;
 using test::ChildProcess;
 using test::counter;
-using test::statusCounter;
 using test::LcmCollector;
+using test::statusCounter;
 using test::waitUntil;
 
 constexpr int kRows = 2857;  // the first 10 s of BROAD trial 05 (286 Hz, three frames a sample)
@@ -188,11 +188,12 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
     heading_in_flood += utime >= flood_start_us && utime < flood_end_us;
   }
   const double flood_s = (flood_end_us - flood_start_us) * 1e-6;
-  std::fprintf(stderr,
-               "STATUS span %.2f s: %.0f ticks, %.0f missed deadlines (rate %.0f Hz); flood %.2f s: %zu HEADING received; "
-               "HEADING rate on STATUS %.1f Hz before, %.1f Hz in the flood\n",
-               status_span_s, ticks, misses, after.rate_hz, flood_s, heading_in_flood, before.heading_rate_hz,
-               during.heading_rate_hz);
+  std::fprintf(
+      stderr,
+      "STATUS span %.2f s: %.0f ticks, %.0f missed deadlines (rate %.0f Hz); flood %.2f s: %zu HEADING received; "
+      "HEADING rate on STATUS %.1f Hz before, %.1f Hz in the flood\n",
+      status_span_s, ticks, misses, after.rate_hz, flood_s, heading_in_flood, before.heading_rate_hz,
+      during.heading_rate_hz);
   EXPECT_GE(ticks + misses, status_span_s * after.rate_hz * 0.9);
   EXPECT_GE(static_cast<double>(heading_in_flood), flood_s * after.rate_hz * 0.6);
   EXPECT_GE(during.heading_rate_hz, 0.75 * std::min(before.heading_rate_hz, after.rate_hz));
@@ -202,7 +203,7 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
 
 // Only in the throwaway VM: vm-run.sh's job folder /run/headingd-vm exists nowhere else.
 bool inThrowawayVm() {
-  struct stat st{};
+  struct stat st {};
   return ::stat("/run/headingd-vm/run.sh", &st) == 0;
 }
 
@@ -246,7 +247,8 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
   std::int64_t max_sample_step_us = 0;
   std::size_t sample_time_went_back = 0;
   for (std::size_t i = 0; i < heading.size(); ++i) {
-    const double shift_s = (static_cast<double>(heading[i].message.utime) - heading[i].receive_s * 1e6 - base_us) * 1e-6;
+    const double shift_s =
+        (static_cast<double>(heading[i].message.utime) - heading[i].receive_s * 1e6 - base_us) * 1e-6;
     if (std::abs(shift_s - 3600.0) < 0.5) {
       ++shifted;
       seen_shift = true;
@@ -262,7 +264,8 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
       sample_time_went_back += step < 0;
     }
   }
-  std::fprintf(stderr, "HEADING: %zu with utime +1 h, %zu back after the second step, %zu neither; largest "
+  std::fprintf(stderr,
+               "HEADING: %zu with utime +1 h, %zu back after the second step, %zu neither; largest "
                "sample_utime step between fresh estimates %.3f s\n",
                shifted, back, other, static_cast<double>(max_sample_step_us) * 1e-6);
   EXPECT_GT(shifted, 100u);
@@ -271,7 +274,8 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
   // step is the emulated CPU's stalls, up to a few tenths of a second; the estimator's gaps
   // counter below says whether the samples themselves had one).
   EXPECT_EQ(sample_time_went_back, 0u);
-  const auto first_fresh = std::find_if(heading.begin(), heading.end(), [](const auto& h) { return h.message.validity == 1; });
+  const auto first_fresh =
+      std::find_if(heading.begin(), heading.end(), [](const auto& h) { return h.message.validity == 1; });
   ASSERT_NE(first_fresh, heading.end());
   // The last sample's first estimate, not the last message: after the bus stops the daemon
   // goes on publishing the last estimate (stale) while the receive time runs on.
@@ -279,7 +283,8 @@ TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotThe
     return h.message.sample_utime == heading.back().message.sample_utime;
   });
   const auto& last = *last_it;
-  const double sample_span_s = static_cast<double>(last.message.sample_utime - first_fresh->message.sample_utime) * 1e-6;
+  const double sample_span_s =
+      static_cast<double>(last.message.sample_utime - first_fresh->message.sample_utime) * 1e-6;
   EXPECT_NEAR(sample_span_s, last.receive_s - first_fresh->receive_s, 1.0);
   // The estimator saw no time going back, no jump and no duplicate; the CAN source saw both steps.
   for (const char* name : {"backwards_time", "clock_jumps", "duplicate_time", "gaps", "imu_rejected"}) {

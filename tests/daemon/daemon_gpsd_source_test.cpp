@@ -25,10 +25,10 @@ namespace {
 
 using namespace std::chrono_literals;
 using test::ChildProcess;
-using test::LcmCollector;
-using test::lcmUrl;
 using test::counter;
 using test::findSource;
+using test::LcmCollector;
+using test::lcmUrl;
 using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
@@ -86,9 +86,10 @@ TEST(DaemonGpsdSource, RealGpsdGivesTheSameFixesAsTheSerialSource) {
   const std::string url_serial = lcmUrl(20), url_gpsd = lcmUrl(22);
   const std::string serial_config = dir.write(
       "serial.toml", daemonConfig(url_serial, "device = \"" + serial_pty.slavePath() + "\"\nepoch_idle_s = 0.1\n"));
-  const std::string gpsd_config = dir.write(
-      "gpsd.toml", daemonConfig(url_gpsd, "source = \"gpsd\"\nhost = \"127.0.0.1\"\nport = " + std::to_string(gpsd_port) +
-                                              "\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n"));
+  const std::string gpsd_config =
+      dir.write("gpsd.toml",
+                daemonConfig(url_gpsd, "source = \"gpsd\"\nhost = \"127.0.0.1\"\nport = " + std::to_string(gpsd_port) +
+                                           "\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n"));
   LcmCollector lcm_serial(url_serial), lcm_gpsd(url_gpsd);
   ChildProcess serial_daemon({HEADINGD_BIN, "--config", serial_config}, dir.file("serial.out"), dir.file("serial.err"));
   ChildProcess gpsd_daemon({HEADINGD_BIN, "--config", gpsd_config}, dir.file("gpsd-daemon.out"),
@@ -138,7 +139,8 @@ TEST(DaemonGpsdSource, RealGpsdGivesTheSameFixesAsTheSerialSource) {
         twin = &s.message;
       }
     }
-    ASSERT_NE(twin, nullptr) << "gpsd's fix at " << m.latitude_deg << ", " << m.longitude_deg << " is not the serial source's";
+    ASSERT_NE(twin, nullptr) << "gpsd's fix at " << m.latitude_deg << ", " << m.longitude_deg
+                             << " is not the serial source's";
     ++matched;
     EXPECT_EQ(m.fix_ok, twin->fix_ok);
     if (std::isnan(m.decimal_year)) {
@@ -177,13 +179,13 @@ TEST(DaemonGpsdSource, RealGpsdGivesTheSameFixesAsTheSerialSource) {
   EXPECT_EQ(counter(*source, "epochs_pushed"), static_cast<std::int64_t>(from_gpsd.size()));
   EXPECT_EQ(counter(*source, "malformed"), 0);
   EXPECT_EQ(counter(*source, "disconnects"), 0);
-  std::fprintf(stderr,
-               "serial source: %zu fixes (%zu with a position); gpsd source: %zu fixes (%zu with a position, %zu equal to "
-               "the serial source's, %zu of them without a date, %zu with HDOP compared); gpsd TPV reports %lld, late %lld\n",
-               serial.size(), serial_with_position, from_gpsd.size(), gpsd_with_position, matched, without_date,
-               hdop_compared,
-               static_cast<long long>(counter(*source, "tpv_reports")),
-               static_cast<long long>(counter(*source, "late_reports")));
+  std::fprintf(
+      stderr,
+      "serial source: %zu fixes (%zu with a position); gpsd source: %zu fixes (%zu with a position, %zu equal to "
+      "the serial source's, %zu of them without a date, %zu with HDOP compared); gpsd TPV reports %lld, late %lld\n",
+      serial.size(), serial_with_position, from_gpsd.size(), gpsd_with_position, matched, without_date, hdop_compared,
+      static_cast<long long>(counter(*source, "tpv_reports")),
+      static_cast<long long>(counter(*source, "late_reports")));
 }
 
 // A listening TCP socket on 127.0.0.1:port (SO_REUSEADDR, so it can come back at once).
@@ -224,10 +226,11 @@ std::string readCommand(int fd) {
 
 std::string tpvAt(int second, double lat) {
   char line[256];
-  std::snprintf(line, sizeof line,
-                R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:%02d.000Z","lat":%.9f,"lon":18.07,"track":45.0,"speed":1.2})"
-                "\r\n",
-                second, lat);
+  std::snprintf(
+      line, sizeof line,
+      R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:%02d.000Z","lat":%.9f,"lon":18.07,"track":45.0,"speed":1.2})"
+      "\r\n",
+      second, lat);
   return line;
 }
 
@@ -242,20 +245,23 @@ TEST(DaemonGpsdSource, MisbehavingPeerIsCountedLoggedAndReconnectedWithoutAStall
   ASSERT_GE(listener, 0);
   const std::string url = lcmUrl(24);
   const std::string config = dir.write(
-      "gpsd.toml", daemonConfig(url, "source = \"gpsd\"\nport = " + std::to_string(port) +
-                                         "\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.1\nreopen_backoff_max_s = 0.4\n"));
+      "gpsd.toml",
+      daemonConfig(url, "source = \"gpsd\"\nport = " + std::to_string(port) +
+                            "\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.1\nreopen_backoff_max_s = 0.4\n"));
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
 
   int peer = ::accept4(listener, nullptr, nullptr, SOCK_CLOEXEC);
   ASSERT_GE(peer, 0);
   EXPECT_EQ(readCommand(peer), "?WATCH={\"enable\":true,\"json\":true};\n");
-  sendAll(peer, R"({"class":"VERSION","release":"3.22","proto_major":3,"proto_minor":14})" "\r\n");
+  sendAll(peer, R"({"class":"VERSION","release":"3.22","proto_major":3,"proto_minor":14})"
+                "\r\n");
   sendAll(peer, tpvAt(1, 59.33));
   std::this_thread::sleep_for(300ms);
-  sendAll(peer, "{\"class\":\"TPV\",\"mode\":3,\"lat\":\n");                          // malformed
-  sendAll(peer, "\x01\x02 binary garbage\n");                                         // malformed
-  sendAll(peer, R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:02.000Z"})" "\n");  // no lat/lon
+  sendAll(peer, "{\"class\":\"TPV\",\"mode\":3,\"lat\":\n");  // malformed
+  sendAll(peer, "\x01\x02 binary garbage\n");                 // malformed
+  sendAll(peer, R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:02.000Z"})"
+                "\n");                                                                // no lat/lon
   sendAll(peer, std::string(100000, 'x') + "\n");                                     // oversized
   sendAll(peer, R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:03.000Z","la)");  // cut
   std::this_thread::sleep_for(200ms);
@@ -308,9 +314,9 @@ TEST(DaemonGpsdSource, MisbehavingPeerIsCountedLoggedAndReconnectedWithoutAStall
   EXPECT_NEAR(gps.back().message.latitude_deg, 59.34 + 14e-5, 1e-9);
   EXPECT_NEAR(gps.back().message.course_rad * kDegPerRad, 45.0, 1e-9);
   const std::string log = test::readFile(dir.file("err"));
-  for (const char* kind : {"gpsd line malformed: not JSON", "gpsd line missing_fields: TPV without lat/lon",
-                           "gpsd line oversized", "gpsd line cut", "gpsd closed the connection",
-                           "connected to gpsd at 127.0.0.1"}) {
+  for (const char* kind :
+       {"gpsd line malformed: not JSON", "gpsd line missing_fields: TPV without lat/lon", "gpsd line oversized",
+        "gpsd line cut", "gpsd closed the connection", "connected to gpsd at 127.0.0.1"}) {
     EXPECT_NE(log.find(kind), std::string::npos) << kind << "\n" << log;
   }
   std::fprintf(stderr, "gpsd source after the misbehaving peer: %s\n", g.last_error.c_str());

@@ -76,8 +76,8 @@ TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
   test::TempDir dir;
 
   // The simulated walk, cut to kSeconds: IMU rows, truth rows, GPS epochs (GGA, RMC, VTG each).
-  const std::string can_table = test::simulatedWalkOnVcan(dir, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN,
-                                                          HEADINGD_CONFIG_DIR, kRows);
+  const std::string can_table =
+      test::simulatedWalkOnVcan(dir, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN, HEADINGD_CONFIG_DIR, kRows);
   const std::vector<std::string> epochs = test::nmeaEpochs(dir.file("sim/gps.nmea"), kSeconds);
   ASSERT_GE(epochs.size(), static_cast<std::size_t>(kSeconds));
   const auto truth = readCsv(dir.file("sim/truth.csv"));
@@ -105,7 +105,8 @@ TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
   for (int j = 0; j < kSeconds; ++j) {
     std::this_thread::sleep_until(t0 + std::chrono::seconds(j));
     const std::string& e = epochs[static_cast<std::size_t>(j)];
-    gps.writePaced({reinterpret_cast<const std::uint8_t*>(e.data()), e.size()}, headingd::test::lineBytesPerSecond(9600));
+    gps.writePaced({reinterpret_cast<const std::uint8_t*>(e.data()), e.size()},
+                   headingd::test::lineBytesPerSecond(9600));
   }
   EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir.file("player.err"));
   test::finishVcanRun(dir, daemon, lcm, 3s);
@@ -143,8 +144,9 @@ TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
     if (first_counted == nullptr) first_counted = &s.message;
     last_counted = &s.message;
   }
-  std::fprintf(stderr, "HIL rates over %zu STATUS periods (median): HEADING %.1f Hz, IMU %.1f Hz, GPS %.2f Hz; "
-                       "%zu IMU, %zu GPS, %zu HEADING messages\n",
+  std::fprintf(stderr,
+               "HIL rates over %zu STATUS periods (median): HEADING %.1f Hz, IMU %.1f Hz, GPS %.2f Hz; "
+               "%zu IMU, %zu GPS, %zu HEADING messages\n",
                heading_hz.size(), median(heading_hz), median(imu_hz), median(gps_hz), imu.size(), lcm.gps().size(),
                lcm.heading().size());
   ASSERT_GT(heading_hz.size(), static_cast<std::size_t>(kSeconds / 2));
@@ -153,7 +155,8 @@ TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
   const double span_s = static_cast<double>(last_counted->uptime_us - first_counted->uptime_us) * 1e-6;
   const double periods = static_cast<double>((last_counted->ticks - first_counted->ticks) +
                                              (last_counted->deadline_misses - first_counted->deadline_misses));
-  std::fprintf(stderr, "HIL estimator: %.0f periods (ticks + missed deadlines) in %.1f s, %lld deadline misses in all\n",
+  std::fprintf(stderr,
+               "HIL estimator: %.0f periods (ticks + missed deadlines) in %.1f s, %lld deadline misses in all\n",
                periods, span_s, static_cast<long long>(status.back().message.deadline_misses));
   EXPECT_NEAR(periods / span_s, 100.0, 3.0);
   EXPECT_GT(median(heading_hz), 50.0);
@@ -185,8 +188,9 @@ TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
   const double rms = std::sqrt(sum_sq / static_cast<double>(errors.size()));
   std::sort(errors.begin(), errors.end());
   const double p95 = errors[errors.size() * 95 / 100];
-  std::fprintf(stderr, "HIL true heading error over %zu estimates (t >= %.0f s): RMS %.2f deg, p95 %.2f deg, max %.2f deg; "
-                       "%zu with a GPS declination\n",
+  std::fprintf(stderr,
+               "HIL true heading error over %zu estimates (t >= %.0f s): RMS %.2f deg, p95 %.2f deg, max %.2f deg; "
+               "%zu with a GPS declination\n",
                errors.size(), kCompareFromS, rms, p95, errors.back(), declination_from_gps);
   EXPECT_LT(rms, kMaxRmsErrorDeg);
   EXPECT_LT(p95, kMaxP95ErrorDeg);

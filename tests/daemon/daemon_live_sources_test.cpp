@@ -24,10 +24,10 @@ namespace {
 
 using namespace std::chrono_literals;
 using test::ChildProcess;
-using test::LcmCollector;
-using test::lcmUrl;
 using test::counter;
 using test::findSource;
+using test::LcmCollector;
+using test::lcmUrl;
 using test::waitUntil;
 
 constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
@@ -41,11 +41,11 @@ TEST(DaemonLiveSources, SerialGpsOnAPtyFeedsGpsMessagesAndTheWmmDeclination) {
   const std::string link = dir.file("gps0");
   headingd::test::pointSymlink(link, pty.slavePath());
   const std::string url = lcmUrl(10);
-  const std::string config = dir.write(
-      "live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
-                       "\"\n[imu_csv]\nenabled = true\npath = \"" + kTrial +
-                       "\"\ntime_axis = \"monotonic\"\n[gps]\ndevice = \"" + link +
-                       "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n");
+  const std::string config =
+      dir.write("live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
+                                 "\"\n[imu_csv]\nenabled = true\npath = \"" + kTrial +
+                                 "\"\ntime_axis = \"monotonic\"\n[gps]\ndevice = \"" + link +
+                                 "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n");
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   // Fed once the reader has the port open (STATUS shows the source running).
@@ -110,11 +110,12 @@ TEST(DaemonLiveSources, SerialGpsHeldByAnotherProgramIsReportedByNameAndTakenWhe
   // fixture keeps the slave open), as "headingd-daemon" (the kernel keeps 15 characters).
   const std::string holder_named = "gps-holder (pid " + std::to_string(holder.pid()) + ")";
   const std::string url = lcmUrl(12);
-  const std::string config = dir.write(
-      "live.toml", "[daemon]\nstatus_period_s = 0.2\n[lcm]\nurl = \"" + url + "\"\n[imu_csv]\nenabled = true\npath = \"" +
-                       kTrial + "\"\ntime_axis = \"monotonic\"\n[gps]\ndevice = \"" + link +
-                       "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n"
-                       "reopen_backoff_max_s = 0.2\n");
+  const std::string config =
+      dir.write("live.toml", "[daemon]\nstatus_period_s = 0.2\n[lcm]\nurl = \"" + url +
+                                 "\"\n[imu_csv]\nenabled = true\npath = \"" + kTrial +
+                                 "\"\ntime_axis = \"monotonic\"\n[gps]\ndevice = \"" + link +
+                                 "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n"
+                                 "reopen_backoff_max_s = 0.2\n");
   const std::string err = dir.file("err");
   std::ofstream(err).flush();
   struct stat st {};
@@ -179,8 +180,8 @@ TEST(DaemonLiveSources, CanSourceWithoutCanSupportWaitsAndReports) {
   can_table = std::regex_replace(can_table, std::regex("dbc = \"dbc/"), "dbc = \"" HEADINGD_CONFIG_DIR "/dbc/");
   can_table = std::regex_replace(can_table, std::regex("interface = \"can0\""), "interface = \"vcan7\"");
   const std::string url = lcmUrl(11);
-  const std::string config = dir.write("can.toml", "[daemon]\nimu_timeout_s = 0.2\nstatus_period_s = 0.2\n[lcm]\nurl = \"" +
-                                                       url + "\"\n" + can_table);
+  const std::string config = dir.write(
+      "can.toml", "[daemon]\nimu_timeout_s = 0.2\nstatus_period_s = 0.2\n[lcm]\nurl = \"" + url + "\"\n" + can_table);
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   EXPECT_TRUE(waitUntil([&] { return lcm.status().size() >= 5; }, 5s)) << test::readFile(dir.file("err"));

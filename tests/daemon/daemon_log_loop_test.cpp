@@ -20,7 +20,6 @@ namespace {
 using namespace std::chrono_literals;
 using namespace test;
 
-
 // The demo capture's first 10 s: 1000 IMU epochs of 3 frames (0 .. 9.9904 s) and the NMEA
 // epochs of 0 .. 9 s (3 sentences each). One loop is then 10.0004 s of log time (the latest
 // last time, the CAN log's, plus one 10 ms sample period).
@@ -28,12 +27,16 @@ std::string loopConfig(const TempDir& dir, const std::string& url, double speed)
   const std::string cut = std::string("zcat ") + kDemoCan + " | head -n 3000 > " + dir.file("can.log") +
                           " && head -n 30 " + kDemoNmea + " > " + dir.file("gps.nmea");
   EXPECT_EQ(std::system(cut.c_str()), 0);
-  return dir.write("headingd.toml", "[lcm]\nurl = \"" + url +
-                                        "\"\n[daemon]\nstatus_period_s = 0.2\n[playback]\nspeed = " +
-                                        std::to_string(speed) + "\nat_end = \"loop\"\n[candump_log]\nenabled = "
-                                        "true\npath = \"" + dir.file("can.log") + "\"\ncan_config = \"" +
-                                        HEADINGD_CONFIG_DIR "/can-headingd.toml\"\n[nmea_log]\nenabled = true\n"
-                                        "path = \"" + dir.file("gps.nmea") + "\"\n");
+  return dir.write("headingd.toml",
+                   "[lcm]\nurl = \"" + url +
+                       "\"\n[daemon]\nstatus_period_s = 0.2\n[playback]\nspeed = " + std::to_string(speed) +
+                       "\nat_end = \"loop\"\n[candump_log]\nenabled = "
+                       "true\npath = \"" +
+                       dir.file("can.log") + "\"\ncan_config = \"" +
+                       HEADINGD_CONFIG_DIR
+                       "/can-headingd.toml\"\n[nmea_log]\nenabled = true\n"
+                       "path = \"" +
+                       dir.file("gps.nmea") + "\"\n");
 }
 
 // What a looping daemon published in its first 2.5 s, then stopped by SIGTERM (exit 0).
@@ -85,7 +88,7 @@ TEST(DaemonLogLoop, CandumpAndNmeaLogsLoopOnOneUnbrokenTimeLine) {
   TempDir dir;
   const std::string url = lcmUrl(0);
   const std::string config = loopConfig(dir, url, 20.0);  // a loop every 0.5 s
-  const LoopRun run = runLooping(dir, url, config);  // four loops and more
+  const LoopRun run = runLooping(dir, url, config);       // four loops and more
   const headingd::status_t& last = run.last_status;
   const std::string& err = run.err;
   EXPECT_NE(err.find("at end: loop (a loop is 10.000 s of log time)"), std::string::npos) << err;
@@ -96,11 +99,13 @@ TEST(DaemonLogLoop, CandumpAndNmeaLogsLoopOnOneUnbrokenTimeLine) {
   ASSERT_NE(gps, nullptr);
   const std::int64_t can_loops = counter(*can, "loops_played");
   const std::int64_t gps_loops = counter(*gps, "loops_played");
-  std::fprintf(stderr, "after 2.5 s at 20x: candump_log %lld loops (%lld frames played), nmea_log %lld loops (%lld "
+  std::fprintf(stderr,
+               "after 2.5 s at 20x: candump_log %lld loops (%lld frames played), nmea_log %lld loops (%lld "
                "epochs); estimator: samples accepted %lld, gaps %lld, backwards %lld, duplicates %lld\n",
                static_cast<long long>(can_loops), static_cast<long long>(counter(*can, "frames_played")),
                static_cast<long long>(gps_loops), static_cast<long long>(counter(*gps, "epochs")),
-               static_cast<long long>(statusCounter(last, "samples_accepted")), static_cast<long long>(statusCounter(last, "gaps")),
+               static_cast<long long>(statusCounter(last, "samples_accepted")),
+               static_cast<long long>(statusCounter(last, "gaps")),
                static_cast<long long>(statusCounter(last, "backwards_time")),
                static_cast<long long>(statusCounter(last, "duplicate_time")));
   EXPECT_GT(statusCounter(last, "samples_accepted"), 3 * 1000);
@@ -173,11 +178,12 @@ TEST(DaemonLogLoop, ImuCsvLoopsOnOneUnbrokenTimeLine) {
 
 TEST(DaemonLogLoop, LoopWithARecordingIsAConfigurationError) {
   TempDir dir;
-  const std::string unpack = std::string("tar xzf " HEADINGD_TEST_DATA_DIR "/recordings/sim-walk-30s.tar.gz -C ") + dir.path();
+  const std::string unpack =
+      std::string("tar xzf " HEADINGD_TEST_DATA_DIR "/recordings/sim-walk-30s.tar.gz -C ") + dir.path();
   ASSERT_EQ(std::system(unpack.c_str()), 0);
-  const std::string config = dir.write("headingd.toml",
-                                       "[playback]\nat_end = \"loop\"\n[recording]\nenabled = true\ndir = \"" +
-                                           dir.file("sim-walk-30s") + "\"\n");
+  const std::string config =
+      dir.write("headingd.toml", "[playback]\nat_end = \"loop\"\n[recording]\nenabled = true\ndir = \"" +
+                                     dir.file("sim-walk-30s") + "\"\n");
   ChildProcess check({HEADINGD_BIN, "--config", config, "--check-config"}, dir.file("out"), dir.file("err"));
   EXPECT_EQ(check.waitFor(10s), 2);
   const std::string err = test::readFile(dir.file("err"));

@@ -38,7 +38,9 @@ using test::waitUntil;
 constexpr int kNmeaPort = 10110;
 using core::kDegPerRad;
 
-double steadyNow() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double steadyNow() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // The demo configuration with absolute paths, an LCM URL of this test's own, the given play
 // speed and estimator rate, and `nmea_out` as the [nmea_out] table.
@@ -59,8 +61,8 @@ std::string demoConfig(const TempDir& dir, const std::string& url, double speed,
   replace("speed = 1.0", "speed = " + std::to_string(speed));
   replace("rate_hz = 100.0", "rate_hz = " + std::to_string(rate_hz));
   replace("console_status = true", "console_status = false");
-  return dir.write("demo.toml", demo + "\n[nmea_out]\nenabled = true\ntcp_port = " + std::to_string(kNmeaPort) +
-                                    "\n" + nmea_out);
+  return dir.write("demo.toml",
+                   demo + "\n[nmea_out]\nenabled = true\ntcp_port = " + std::to_string(kNmeaPort) + "\n" + nmea_out);
 }
 
 // A TCP client of the daemon's server: connects (retrying until the server listens), then
@@ -91,7 +93,9 @@ class NmeaClient {
     if (fd_ >= 0) close(fd_);
     fd_ = -1;
   }
-  void send(const std::string& bytes) const { ASSERT_EQ(::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL), static_cast<ssize_t>(bytes.size())); }
+  void send(const std::string& bytes) const {
+    ASSERT_EQ(::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL), static_cast<ssize_t>(bytes.size()));
+  }
 
   struct Line {
     std::string text;  // as framed: '$' through "*hh"
@@ -226,7 +230,12 @@ TEST(DaemonNmeaOut, TcpClientsAndUdpGetTheHeadingOfLcmWithinTheSentenceResolutio
   }
   std::this_thread::sleep_for(2500ms);
   const std::vector<NmeaClient::Line> lines = reader.lines();
-  ASSERT_TRUE(waitUntil([&] { return !lcm.status().empty() && counter(lcm.status().back().message, "nmea_out_bytes_received") >= static_cast<std::int64_t>(junk.size()); }, 3s))
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        return !lcm.status().empty() && counter(lcm.status().back().message, "nmea_out_bytes_received") >=
+                                            static_cast<std::int64_t>(junk.size());
+      },
+      3s))
       << test::readFile(dir.file("err"));
   daemon.signal(SIGTERM);
   EXPECT_EQ(daemon.waitFor(5s), 0) << test::readFile(dir.file("err"));
@@ -299,11 +308,13 @@ TEST(DaemonNmeaOut, TcpClientsAndUdpGetTheHeadingOfLcmWithinTheSentenceResolutio
   EXPECT_EQ(counter(status, "nmea_out_bytes_received"), static_cast<std::int64_t>(junk.size()));
   // Every sentence received was counted, but those of the last second (after the last STATUS:
   // 30 a second to each of the two).
-  EXPECT_GE(counter(status, "nmea_out_sentences_sent"), static_cast<std::int64_t>(lines.size() + datagrams.size()) - 60);
+  EXPECT_GE(counter(status, "nmea_out_sentences_sent"),
+            static_cast<std::int64_t>(lines.size() + datagrams.size()) - 60);
   EXPECT_EQ(counter(status, "nmea_out_sentences_dropped"), 0);
   const std::string err = test::readFile(dir.file("err"));
   EXPECT_NE(err.find("nmea_out: serving HEHDT, HETHS, HEHDG at 10 Hz to TCP clients on 127.0.0.1 port 10110"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
   EXPECT_NE(err.find("bytes; ignored (headingd only sends)"), std::string::npos) << err;
 }
 
@@ -386,10 +397,10 @@ TEST(DaemonNmeaOut, GpsdReadsTheHeadingAndReportsItAsAtt) {
   // Its own IPC namespace (gpsd puts its fix and NTP time into System V shared memory) and no
   // system bus (gpsd announces fixes on D-Bus): nothing of the host is touched.
   const std::string gpsd_port = "29470";
-  ChildProcess gpsd({"/usr/bin/unshare", "-i", "/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=unix:path=/nonexistent",
-                     "/usr/sbin/gpsd", "-N", "-n", "-b", "-F", dir.file("gpsd.sock"), "-S", gpsd_port,
-                     "tcp://127.0.0.1:" + std::to_string(kNmeaPort)},
-                    dir.file("gpsd.out"), dir.file("gpsd.err"));
+  ChildProcess gpsd(
+      {"/usr/bin/unshare", "-i", "/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=unix:path=/nonexistent", "/usr/sbin/gpsd",
+       "-N", "-n", "-b", "-F", dir.file("gpsd.sock"), "-S", gpsd_port, "tcp://127.0.0.1:" + std::to_string(kNmeaPort)},
+      dir.file("gpsd.out"), dir.file("gpsd.err"));
   std::this_thread::sleep_for(500ms);  // gpsd listens
   FileTail tail(dir.file("gpspipe.out"));
   ChildProcess gpspipe({"/usr/bin/gpspipe", "-w", "-n", "40", "127.0.0.1:" + gpsd_port}, dir.file("gpspipe.out"),
@@ -414,7 +425,10 @@ TEST(DaemonNmeaOut, GpsdReadsTheHeadingAndReportsItAsAtt) {
     EXPECT_TRUE(matchesHeading(heading, deg, line.receive_s, 0.5, 0.05 + 1e-9))
         << line.text << " matches no HEADING within 0.5 s";
   }
-  std::fprintf(stderr, "gpspipe: %zu ATT reports, each within 0.05 deg (HDT's resolution) of a fresh HEADING received within 0.5 s\n", att);
+  std::fprintf(
+      stderr,
+      "gpspipe: %zu ATT reports, each within 0.05 deg (HDT's resolution) of a fresh HEADING received within 0.5 s\n",
+      att);
   EXPECT_GE(att, 30u) << test::readFile(dir.file("gpspipe.out"));
   EXPECT_NE(test::readFile(dir.file("gpspipe.out")).find("\"driver\":\"NMEA0183\""), std::string::npos);
 }
@@ -456,7 +470,8 @@ TEST(DaemonNmeaOut, AClientThatNeverReadsStallsNeitherTheOthersNorTheEstimator) 
   EXPECT_EQ(daemon.waitFor(5s), 0) << test::readFile(dir.file("err"));
   lcm.stop();
 
-  EXPECT_GT(counter(after.message, "nmea_out_sentences_dropped"), counter(before.message, "nmea_out_sentences_dropped"));
+  EXPECT_GT(counter(after.message, "nmea_out_sentences_dropped"),
+            counter(before.message, "nmea_out_sentences_dropped"));
   EXPECT_EQ(counter(after.message, "nmea_out_clients"), 2);
   EXPECT_EQ(counter(after.message, "nmea_out_clients_refused"), 1);
   // The reader: three sentences a tick at 200 Hz, at least half of them (the machine is shared).

@@ -4,12 +4,12 @@
 // (/proc/<pid>/task/*/stat) and STATUS over real LCM.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <map>
 #include <pthread.h>
 #include <sched.h>
-#include <sstream>
 #include <unistd.h>
+#include <algorithm>
+#include <map>
+#include <sstream>
 
 #include "daemon_test_support.hpp"
 #include "lcm_collector.hpp"
@@ -185,10 +185,9 @@ TEST(DaemonRealtime, RefusedSchedulingIsSaidOnceAndTheDaemonRunsOnWithNormalSche
 TEST(DaemonRealtime, PublishOnImuSendsAHeadingForEachSampleAsItArrives) {
   TempDir dir;
   const std::string url = lcmUrl(23);
-  const std::string config =
-      dir.write("imu.toml", "[lcm]\nurl = \"" + url + "\"\n[daemon]\npublish = \"imu\"\n[imu_csv]\nenabled = true\npath = \"" +
-                                std::string(HEADINGD_CONFIG_DIR) +
-                                "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz\"\n");
+  const std::string config = dir.write(
+      "imu.toml", "[lcm]\nurl = \"" + url + "\"\n[daemon]\npublish = \"imu\"\n[imu_csv]\nenabled = true\npath = \"" +
+                      std::string(HEADINGD_CONFIG_DIR) + "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz\"\n");
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   ASSERT_TRUE(waitUntil([&] { return lcm.imu().size() >= 500; }, 5s)) << test::readFile(dir.file("err"));

@@ -10,8 +10,8 @@
 // private namespace). HEADINGD_KEEP_RECORDING=DIR copies the recording there.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <net/if.h>
+#include <filesystem>
 #include <regex>
 #include <sstream>
 
@@ -56,21 +56,21 @@ TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
   test::TempDir dir;
 
   // Inputs: the start of a simulated walk as CAN frames and NMEA epochs.
-  const std::string can_table = test::simulatedWalkOnVcan(dir, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN,
-                                                          HEADINGD_CONFIG_DIR, kRows);
+  const std::string can_table =
+      test::simulatedWalkOnVcan(dir, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN, HEADINGD_CONFIG_DIR, kRows);
   const std::vector<std::string> epochs = test::nmeaEpochs(dir.file("sim/gps.nmea"), kSeconds);
   ASSERT_GE(epochs.size(), static_cast<std::size_t>(kSeconds));
 
   // Live, recorded twice: by the black box (inputs) and by lcm-logger (outputs).
   headingd::test::PtyPair gps;
   const std::string url = "udpm://239.255.76.67:7667?ttl=0";  // alone in the VM's namespace
-  const std::string config = dir.write(
-      "live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url + "\"\n" +
-                       can_table + "\n[gps]\nenabled = true\ndevice = \"" + gps.slavePath() +
-                       "\"\nbaud = 9600\n[recorder]\ndir = \"" + dir.file("recordings") + "\"\n" +
-                       // A place without a date: the daemon takes the system's, and the recording must
-                       // carry the one it took for the replays to be bit-exact.
-                       "[place]\nlatitude_deg = 59.33\nlongitude_deg = 18.07\n");
+  const std::string config =
+      dir.write("live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
+                                 "\"\n" + can_table + "\n[gps]\nenabled = true\ndevice = \"" + gps.slavePath() +
+                                 "\"\nbaud = 9600\n[recorder]\ndir = \"" + dir.file("recordings") + "\"\n" +
+                                 // A place without a date: the daemon takes the system's, and the recording must
+                                 // carry the one it took for the replays to be bit-exact.
+                                 "[place]\nlatitude_deg = 59.33\nlongitude_deg = 18.07\n");
   ChildProcess logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", dir.file("live.lcm")},
                       dir.file("logger.out"), dir.file("logger.err"));
   test::LcmCollector lcm(url);

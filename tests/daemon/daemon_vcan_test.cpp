@@ -72,7 +72,8 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
 
   // The samples as decoded: each IMU message is the CSV's row i within half the DBC's resolution.
   ASSERT_EQ(imu.size(), static_cast<std::size_t>(kRows)) << "IMU messages lost between daemon and subscriber";
-  const std::vector<std::string> axes = {"gyr_x", "gyr_y", "gyr_z", "acc_x", "acc_y", "acc_z", "mag_x", "mag_y", "mag_z"};
+  const std::vector<std::string> axes = {"gyr_x", "gyr_y", "gyr_z", "acc_x", "acc_y",
+                                         "acc_z", "mag_x", "mag_y", "mag_z"};
   std::vector<std::string> columns = axes;
   columns.push_back("t");
   const files::NumericCsv rows = files::readNumericCsv(dir.file("imu.csv"), columns);
@@ -112,7 +113,8 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
                          dir.file("replay.csv") + " 2>/dev/null")
                             .c_str()),
             0);
-  const std::vector<double> replay_yaw_deg = files::readNumericCsv(dir.file("replay.csv"), {"yaw_deg"}).column("yaw_deg");
+  const std::vector<double> replay_yaw_deg =
+      files::readNumericCsv(dir.file("replay.csv"), {"yaw_deg"}).column("yaw_deg");
   ASSERT_EQ(replay_yaw_deg.size(), static_cast<std::size_t>(kRows));
   std::map<std::int64_t, std::size_t> index_of_sample;
   for (std::size_t i = 0; i < imu.size(); ++i) index_of_sample[imu[i].message.sample_utime] = i;
@@ -129,7 +131,8 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
     ++compared;
   }
   const double csv_seconds = rows.column("t").back() - rows.column("t").front();
-  const double received_seconds = static_cast<double>(imu.back().message.sample_utime - imu.front().message.sample_utime) * 1e-6;
+  const double received_seconds =
+      static_cast<double>(imu.back().message.sample_utime - imu.front().message.sample_utime) * 1e-6;
   std::fprintf(stderr,
                "vcan: %zu IMU messages (worst decoded value %.2f of half a DBC step; %.3f s of kernel time for the "
                "CSV's %.3f s), %zu fresh ATTITUDE, %zu compared with headingd-replay of the received samples, max yaw "

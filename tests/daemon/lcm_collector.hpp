@@ -40,11 +40,11 @@ class LcmCollector {
     // LCM keeps at most 30 received messages a subscription by default and drops the rest
     // while the handler is behind: 10 ms of IMU messages at 10x real time. This subscriber
     // must see everything the daemon sent, so its queues are as deep as a whole trial.
-    for (lcm::Subscription* s : {lcm_.subscribe("HEADING", &LcmCollector::onHeading, this),
-                                 lcm_.subscribe("ATTITUDE", &LcmCollector::onAttitude, this),
-                                 lcm_.subscribe("IMU", &LcmCollector::onImu, this),
-                                 lcm_.subscribe("GPS", &LcmCollector::onGps, this),
-                                 lcm_.subscribe("STATUS", &LcmCollector::onStatus, this)}) {
+    for (lcm::Subscription* s :
+         {lcm_.subscribe("HEADING", &LcmCollector::onHeading, this),
+          lcm_.subscribe("ATTITUDE", &LcmCollector::onAttitude, this),
+          lcm_.subscribe("IMU", &LcmCollector::onImu, this), lcm_.subscribe("GPS", &LcmCollector::onGps, this),
+          lcm_.subscribe("STATUS", &LcmCollector::onStatus, this)}) {
       s->setQueueCapacity(1 << 17);
     }
     thread_ = std::thread([this] {

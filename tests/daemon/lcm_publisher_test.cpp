@@ -142,7 +142,7 @@ TEST(LcmPublisher, EveryFlushGoesOutOnTimeLateUnannouncedOrInline) {
     };
     for (int i = 0; i < 20; ++i) tick(std::chrono::microseconds(40), std::chrono::milliseconds(2));  // on time
     for (int i = 0; i < 5; ++i) tick(std::chrono::milliseconds(4), std::chrono::milliseconds(1));    // late
-    publisher.expectFlushAt(0);  // none announced
+    publisher.expectFlushAt(0);                                                                      // none announced
     for (int i = 0; i < 5; ++i) {
       ASSERT_TRUE(publisher.publish("T", headingAt(sent++)));
       publisher.flush();
@@ -163,7 +163,7 @@ TEST(LcmPublisher, TheSampleAgeIsMeasuredWhenTheMessageWasSent) {
   LcmPublisher publisher(kUrl, logLimit());
   const std::int64_t arrival = monotonicNs() - 5'000'000;  // a sample that came 5 ms ago
   ASSERT_TRUE(publisher.publish("T", headingAt(1), arrival));
-  ASSERT_TRUE(publisher.publish("T", headingAt(2)));  // carries no sample: no age
+  ASSERT_TRUE(publisher.publish("T", headingAt(2)));           // carries no sample: no age
   std::this_thread::sleep_for(std::chrono::milliseconds(20));  // queued, not yet sent
   const std::int64_t before_send = monotonicNs();
   publisher.start();

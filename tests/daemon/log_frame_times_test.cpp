@@ -68,7 +68,7 @@ TEST(LogFrameTimes, AnEpochOfThreeFramesBackAtZeroIsSkipped) {
 
 TEST(LogFrameTimes, SwappedFramesAndAGapArePlayedAsTheyAre) {
   auto t = steady(100);
-  std::swap(t[10], t[11]);  // 10 ms back, then on
+  std::swap(t[10], t[11]);                                      // 10 ms back, then on
   for (std::size_t i = 60; i < t.size(); ++i) t[i] += 30 * kS;  // 30 s without frames
   const LogFrameTimes r = placeLogFrames(t);
   EXPECT_EQ(r.outlier_frames, 0u);
@@ -84,7 +84,7 @@ TEST(LogFrameTimes, AStepOfTheLogsClockIsPlayedAtOnce) {
     EXPECT_EQ(r.outlier_frames, 0u);
     EXPECT_EQ(r.time_steps, 1u);
     EXPECT_EQ(r.first_step_index, 40);
-    EXPECT_EQ(r.play_ns[40], r.play_ns[39]);  // no wait, no jump back
+    EXPECT_EQ(r.play_ns[40], r.play_ns[39]);                  // no wait, no jump back
     EXPECT_EQ(r.play_ns[99] - r.play_ns[40], t[99] - t[40]);  // then the log's own spacing
   }
 }

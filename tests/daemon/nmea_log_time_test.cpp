@@ -36,7 +36,8 @@ TEST(NmeaLogTime, AWrongFirstDateDoesNotMoveTheLog) {
   ASSERT_TRUE(day.has_value());
   EXPECT_EQ(*day, k2026June1);
   NmeaLogTime time(0, day);
-  for (std::int64_t i = 0; i < 4; ++i) EXPECT_EQ(time.of(log[static_cast<std::size_t>(i)].fix), k2026June1 + 12 * kHour + i);
+  for (std::int64_t i = 0; i < 4; ++i)
+    EXPECT_EQ(time.of(log[static_cast<std::size_t>(i)].fix), k2026June1 + 12 * kHour + i);
   EXPECT_EQ(time.datesNotBelieved(), 1u);
 }
 

@@ -88,8 +88,9 @@ TEST(RecorderConfig, KeysAreReadWithTheirRanges) {
   TempDir dir;
   StateDirectory none(std::nullopt);
   const RecorderConfig c =
-      loadDaemonConfig(dir.write("r.toml", "[recorder]\ndir = \"/srv/rec\"\nsegment_max_bytes = 1048576\n"
-                                           "segment_max_age_s = 60\ntotal_max_bytes = 104857600\nring_lines = 1024\n"))
+      loadDaemonConfig(dir.write("r.toml",
+                                 "[recorder]\ndir = \"/srv/rec\"\nsegment_max_bytes = 1048576\n"
+                                 "segment_max_age_s = 60\ntotal_max_bytes = 104857600\nring_lines = 1024\n"))
           .recorder;
   EXPECT_TRUE(c.enabled);
   EXPECT_EQ(c.dir, "/srv/rec");

@@ -3,24 +3,24 @@
 // cap over old and current recordings, drops counted and announced, errors survived.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <pthread.h>
+#include <sched.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
+#include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <atomic>
 #include <cerrno>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
-#include <pthread.h>
-#include <sched.h>
 #include <memory>
 #include <regex>
-#include <spdlog/sinks/ostream_sink.h>
-#include <spdlog/spdlog.h>
 #include <sstream>
-#include <sys/ioctl.h>
-#include <sys/stat.h>
 #include <thread>
-#include <unistd.h>
 
 #include "daemon_test_support.hpp"
 #include "headingd/daemon/recorder.hpp"
@@ -354,8 +354,10 @@ TEST(Recorder, ProducerNeverWaitsForAStuckDiskItsDropsAreCountedAndAnnounced) {
     reading = std::thread([&] {
       char chunk[65536];
       for (ssize_t n; (n = read(reader, chunk, sizeof chunk)) != 0;) {
-        if (n > 0) received.append(chunk, static_cast<std::size_t>(n));
-        else if (errno != EINTR) break;
+        if (n > 0)
+          received.append(chunk, static_cast<std::size_t>(n));
+        else if (errno != EINTR)
+          break;
       }
     });
   };
@@ -385,8 +387,8 @@ TEST(Recorder, ProducerNeverWaitsForAStuckDiskItsDropsAreCountedAndAnnounced) {
   }
   int queued = 0;
   ioctl(reader, FIONREAD, &queued);
-  ASSERT_TRUE(pipe_full()) << "the writer has filled the pipe: " << queued << " of " << capacity
-                           << " bytes, " << produced << " lines produced";
+  ASSERT_TRUE(pipe_full()) << "the writer has filled the pipe: " << queued << " of " << capacity << " bytes, "
+                           << produced << " lines produced";
   // ... then flat out: nothing waits for the writer, the ring fills and lines are dropped.
   for (int i = 0; i < 5000; ++i) accepted += can.write(numbered("can", produced++, 100)) ? 1 : 0;
   EXPECT_GE(produced - accepted, 4000) << "the ring holds 64 lines, the pipe less than a page more";
@@ -394,7 +396,8 @@ TEST(Recorder, ProducerNeverWaitsForAStuckDiskItsDropsAreCountedAndAnnounced) {
   ASSERT_TRUE(waitUntil([&] { return log.count("ring of 64 lines was full") == 1; }, 10s)) << log.text();
 
   start_reading();  // the disk comes back
-  ASSERT_TRUE(waitUntil([&] { return recorder.counters().lines_written == static_cast<std::uint64_t>(accepted); }, 20s));
+  ASSERT_TRUE(
+      waitUntil([&] { return recorder.counters().lines_written == static_cast<std::uint64_t>(accepted); }, 20s));
   for (int i = 0; i < 10; ++i, ++produced) ASSERT_TRUE(can.write(numbered("can", produced, 100)));
   finally.f();
   finally.f = [] {};
@@ -422,17 +425,21 @@ TEST(Recorder, AFullDiskDropsAndCountsLogsOnceAndWritingResumesInANewSegment) {
   RecorderStream& can = recorder.stream("can");
   int produced = 0;
   for (; produced < 150; ++produced) ASSERT_TRUE(can.write(numbered("can", produced)));  // 99 fill the first
-  ASSERT_TRUE(waitUntil([&] {
-    const RecorderCounters c = recorder.counters();
-    return c.write_errors >= 1 && c.lines_dropped_io >= 51;
-  }, 10s));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        const RecorderCounters c = recorder.counters();
+        return c.write_errors >= 1 && c.lines_dropped_io >= 51;
+      },
+      10s));
   EXPECT_EQ(recorder.counters().lines_dropped_io, 51u) << "the lines after the first segment's 99";
   // During the back-off lines go nowhere (counted); after it a new segment is opened.
-  ASSERT_TRUE(waitUntil([&] {
-    can.write(numbered("can", produced++));
-    std::this_thread::sleep_for(50ms);
-    return recorder.counters().segments_opened >= 3;
-  }, 30s));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        can.write(numbered("can", produced++));
+        std::this_thread::sleep_for(50ms);
+        return recorder.counters().segments_opened >= 3;
+      },
+      30s));
   for (int i = 0; i < 5; ++i, ++produced) ASSERT_TRUE(can.write(numbered("can", produced)));
   recorder.stop();
 
@@ -466,11 +473,13 @@ TEST(Recorder, ASegmentThatCannotBeOpenedIsTriedAgainUnderTheSameNumber) {
   ASSERT_TRUE(gps.write(numbered("gps", produced++)));
   ASSERT_TRUE(waitUntil([&] { return recorder.counters().write_errors == 1; }, 10s));
   fs::remove(first);
-  ASSERT_TRUE(waitUntil([&] {
-    gps.write(numbered("gps", produced++));
-    std::this_thread::sleep_for(50ms);
-    return recorder.counters().segments_opened == 1;
-  }, 30s));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        gps.write(numbered("gps", produced++));
+        std::this_thread::sleep_for(50ms);
+        return recorder.counters().segments_opened == 1;
+      },
+      30s));
   recorder.stop();
   const std::vector<std::string> lines = linesOf(readFile(first));
   ASSERT_GE(lines.size(), 2u);
@@ -541,15 +550,17 @@ TEST(Recorder, TheWriterThreadRunsAtNormalSchedulingWhenStartedFromARealTimeThre
   ASSERT_TRUE(started_at_fifo);
   // The writer thread names itself "recorder".
   int writer_policy = -1;
-  ASSERT_TRUE(waitUntil([&] {
-    for (const auto& task : fs::directory_iterator("/proc/self/task")) {
-      if (readFile(task.path().string() + "/comm") == "recorder\n") {
-        writer_policy = sched_getscheduler(std::stoi(task.path().filename().string()));
-        return true;
-      }
-    }
-    return false;
-  }, 10s));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        for (const auto& task : fs::directory_iterator("/proc/self/task")) {
+          if (readFile(task.path().string() + "/comm") == "recorder\n") {
+            writer_policy = sched_getscheduler(std::stoi(task.path().filename().string()));
+            return true;
+          }
+        }
+        return false;
+      },
+      10s));
   EXPECT_EQ(writer_policy, SCHED_OTHER);
   recorder.stop();
 }

@@ -10,9 +10,9 @@
 #include <cstdlib>
 #include <regex>
 #include <sstream>
-#include <vector>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "daemon_test_support.hpp"
 #include "headingd/source_status_t.hpp"
@@ -32,8 +32,8 @@ inline std::string vcanCanTable(const std::string& config_dir) {
 inline void writeCandumpLog(const TempDir& dir, const std::string& candump_from_csv_bin, const std::string& can_table,
                             const std::string& imu_csv) {
   dir.write("can.toml", can_table);
-  const std::string command = candump_from_csv_bin + " --imu-csv " + imu_csv + " --can-config " +
-                              dir.file("can.toml") + " --out " + dir.file("imu.log") + " >/dev/null";
+  const std::string command = candump_from_csv_bin + " --imu-csv " + imu_csv + " --can-config " + dir.file("can.toml") +
+                              " --out " + dir.file("imu.log") + " >/dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
 }
 

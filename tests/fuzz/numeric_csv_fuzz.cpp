@@ -98,8 +98,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const std::vector<std::string_view> fields = split(lines[reader.lineNumber() - 1], ',');
       for (std::size_t slot = 0; slot < values.size(); ++slot) {
         const auto& header = reader.header();
-        const std::size_t index = static_cast<std::size_t>(
-            std::find(header.begin(), header.end(), reader.columns()[slot]) - header.begin());
+        const std::size_t index =
+            static_cast<std::size_t>(std::find(header.begin(), header.end(), reader.columns()[slot]) - header.begin());
         double expected = 0.0;
         FUZZ_CHECK(index < fields.size() && referenceValue(fields[index], &expected));
         FUZZ_CHECK(sameDouble(values[slot], expected));

@@ -15,16 +15,16 @@
 #include "fuzz_check.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/files/input_file.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/files/input_file.hpp"
 
 using namespace headingd;
 
 namespace {
 
 const core::WorldMagneticModel& worldMagneticModel() {
-  static const auto model = std::make_unique<core::WorldMagneticModel>(
-      core::parseWmmCoefficients(files::readMaybeGzipFile(HEADINGD_FUZZ_WMM_COF, files::kWmmFileLimit), HEADINGD_FUZZ_WMM_COF));
+  static const auto model = std::make_unique<core::WorldMagneticModel>(core::parseWmmCoefficients(
+      files::readMaybeGzipFile(HEADINGD_FUZZ_WMM_COF, files::kWmmFileLimit), HEADINGD_FUZZ_WMM_COF));
   return *model;
 }
 
@@ -33,7 +33,8 @@ double value(FuzzedDataProvider& in, double typical, double spread) {
   switch (in.ConsumeIntegralInRange<int>(0, 15)) {
     case 0: return in.ConsumeFloatingPoint<double>();  // anything, huge values included
     case 1: return std::numeric_limits<double>::quiet_NaN();
-    case 2: return in.ConsumeBool() ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+    case 2:
+      return in.ConsumeBool() ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
     default: return typical + spread * (in.ConsumeIntegralInRange<int>(-1000, 1000) / 1000.0);
   }
 }
@@ -48,9 +49,9 @@ std::int64_t advance(std::int64_t t_ns, std::int64_t step) {
 std::int64_t nextTime(FuzzedDataProvider& in, std::int64_t t_ns) {
   switch (in.ConsumeIntegralInRange<int>(0, 31)) {
     case 0: return in.ConsumeIntegral<std::int64_t>();  // a corrupt stamp, anywhere
-    case 1: return t_ns;                                 // duplicate
-    case 2: return advance(t_ns, -in.ConsumeIntegralInRange<std::int64_t>(1, 2'000'000'000));  // backwards
-    case 3: return advance(t_ns, in.ConsumeIntegralInRange<std::int64_t>(0, 100'000'000'000));  // a gap
+    case 1: return t_ns;                                // duplicate
+    case 2: return advance(t_ns, -in.ConsumeIntegralInRange<std::int64_t>(1, 2'000'000'000));       // backwards
+    case 3: return advance(t_ns, in.ConsumeIntegralInRange<std::int64_t>(0, 100'000'000'000));      // a gap
     default: return advance(t_ns, in.ConsumeIntegralInRange<std::int64_t>(1'000'000, 20'000'000));  // 50..1000 Hz
   }
 }
@@ -69,7 +70,8 @@ core::GpsObservation observation(FuzzedDataProvider& in, std::int64_t t_ns) {
   core::GpsObservation g;
   g.t_ns = in.ConsumeIntegralInRange<int>(0, 15) == 0 ? in.ConsumeIntegral<std::int64_t>() : t_ns;
   g.fix_ok = in.ConsumeBool();
-  if (in.ConsumeBool()) g.position = core::GeodeticPosition{value(in, 0.0, 95.0), value(in, 0.0, 200.0), value(in, 0.0, 10.0)};
+  if (in.ConsumeBool())
+    g.position = core::GeodeticPosition{value(in, 0.0, 95.0), value(in, 0.0, 200.0), value(in, 0.0, 10.0)};
   if (in.ConsumeBool()) g.decimal_year = value(in, 2027.5, 5.0);
   if (in.ConsumeBool()) g.course_rad = value(in, 3.0, 4.0);
   if (in.ConsumeBool()) g.speed_mps = value(in, 1.5, 1.5);

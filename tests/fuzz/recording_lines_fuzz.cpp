@@ -26,7 +26,7 @@ void checkCanNote(std::string_view line) {
   FUZZ_CHECK(note->candump_ns >= 0);
   recording::LineBuffer out;
   const std::size_t n = note->kind == recording::CanNote::kFlush ? recording::formatCanFlush(note->candump_ns, out)
-                                                                   : recording::formatCanDropped(note->candump_ns, out);
+                                                                 : recording::formatCanDropped(note->candump_ns, out);
   const auto again = recording::parseCanNote(asView(out, n));
   FUZZ_CHECK(again && again->kind == note->kind && again->candump_ns == note->candump_ns);
 }
@@ -42,7 +42,7 @@ void checkGpsLine(std::string_view line) {
   recording::ParsedGpsLine again;
   if (parsed.op != recording::GpsOp::kRead) {
     const std::size_t n = parsed.op == recording::GpsOp::kIdle ? recording::formatGpsIdle(parsed.t_ns, out)
-                                                                : recording::formatGpsEnd(parsed.t_ns, out);
+                                                               : recording::formatGpsEnd(parsed.t_ns, out);
     FUZZ_CHECK(recording::parseGpsLine(asView(out, n), again, &error));
     FUZZ_CHECK(again.op == parsed.op && again.t_ns == parsed.t_ns);
     return;
@@ -75,7 +75,8 @@ void checkEstimatorLine(std::string_view line) {
                             : recording::formatCalibrationReloaded(parsed.t_ns, parsed.imu_samples_before, out);
   recording::ParsedEstimatorLine again;
   FUZZ_CHECK(recording::parseEstimatorLine(asView(out, n), again, &error));
-  FUZZ_CHECK(again.op == parsed.op && again.t_ns == parsed.t_ns && again.imu_samples_before == parsed.imu_samples_before);
+  FUZZ_CHECK(again.op == parsed.op && again.t_ns == parsed.t_ns &&
+             again.imu_samples_before == parsed.imu_samples_before);
 }
 
 }  // namespace

@@ -22,7 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   FUZZ_CHECK(coefficients.degree >= 1 && coefficients.degree <= core::kWmmMaxDegree);
   const core::WorldMagneticModel model(coefficients);
-  const core::MagneticFieldElements field = model.field(core::GeodeticPosition{48.1, 11.6, 0.5}, model.epochYear() + 1.0);
+  const core::MagneticFieldElements field =
+      model.field(core::GeodeticPosition{48.1, 11.6, 0.5}, model.epochYear() + 1.0);
   bool plausible = true;
   for (const core::WmmTerm& t : coefficients.terms) {
     plausible = plausible && std::abs(t.g_nT) < 1e6 && std::abs(t.h_nT) < 1e6 && std::abs(t.g_rate_nT_per_year) < 1e6 &&

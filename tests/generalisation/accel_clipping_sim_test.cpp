@@ -103,18 +103,18 @@ TEST(AccelClipping, AShakenPhoneThatClipsLeavesItsClippedDirectionToTheGyro) {
   int clipping_runs = 0;
   double sum_deg = 0.0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
-    const sim::SimResult result =
-        sim::simulate(sim::simConfig("shake-any", seed, sim::ImuGrade::kPhone, 100.0), wmm());
+    const sim::SimResult result = sim::simulate(sim::simConfig("shake-any", seed, sim::ImuGrade::kPhone, 100.0), wmm());
     const study::Recording r = study::fromSimulation(result, "shake-any");
     const ClipRun with = runWith(r, core::EstimatorParams{});
     if (with.clipped_counter < 1000) continue;  // this seed's phone is not shaken past its rail
     ++clipping_runs;
     const double with_deg = study::score(r, with.estimates).rmse.inclination_rad / kRadPerDeg;
     const double weighted_deg = study::score(r, runWith(r, running_weight).estimates).rmse.inclination_rad / kRadPerDeg;
-    std::printf("shake-any phone seed %llu: %llu clipped samples; plain inclination %.2f deg (%.2f deg with the "
-                "running weight)\n",
-                static_cast<unsigned long long>(seed), static_cast<unsigned long long>(with.clipped_counter), with_deg,
-                weighted_deg);
+    std::printf(
+        "shake-any phone seed %llu: %llu clipped samples; plain inclination %.2f deg (%.2f deg with the "
+        "running weight)\n",
+        static_cast<unsigned long long>(seed), static_cast<unsigned long long>(with.clipped_counter), with_deg,
+        weighted_deg);
     EXPECT_LT(with_deg, weighted_deg) << "seed " << seed;
     sum_deg += with_deg;
   }
@@ -136,9 +136,8 @@ void expectUntouched(const study::Recording& r, const std::string& what) {
 TEST(AccelClipping, NothingIsFlaggedWhereNothingClips) {
   int phones = 0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
-    const sim::SimResult result =
-        sim::simulate(sim::simConfig("phone-running", seed, sim::ImuGrade::kPhone, 100.0),
-                      sim::phoneScenario("phone-running", seed), wmm());
+    const sim::SimResult result = sim::simulate(sim::simConfig("phone-running", seed, sim::ImuGrade::kPhone, 100.0),
+                                                sim::phoneScenario("phone-running", seed), wmm());
     if (result.accel.full_scale < 6.0 * sim::kGravity_m_s2) continue;  // ±8 g: never at the rail
     ++phones;
     expectUntouched(study::fromSimulation(result, "phone-running"), "phone-running seed " + std::to_string(seed));

@@ -73,7 +73,8 @@ TEST(AccelDelay, LearnedAndUsedWhereTheBodyStandsAndTheSensorTurns) {
 TEST(AccelDelay, NothingIsLearnedWhileTheBodyRunsOrHandlesThePhone) {
   for (const std::string scenario : {"phone-running", "handheld"}) {
     for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-      const AccelDelayRun learned = run(lateAccelerometer(scenario, seed, sim::ImuGrade::kPhone), core::EstimatorParams{});
+      const AccelDelayRun learned =
+          run(lateAccelerometer(scenario, seed, sim::ImuGrade::kPhone), core::EstimatorParams{});
       std::printf("%s phone seed %llu: learned %.1f ms, %s, turned by %.1f ms\n", scenario.c_str(),
                   static_cast<unsigned long long>(seed), 1e3 * learned.candidate_s, learned.used ? "used" : "not used",
                   1e3 * learned.lag_s);

@@ -52,9 +52,10 @@ void expectBounded(const std::vector<std::function<study::Recording()>>& makers,
     worst_after = std::max(worst_after, e.max_inclination_after_rad / kRadPerDeg);
     worst_settle = std::max(worst_settle, e.settle_time_s);
   }
-  std::printf("%s: %zu runs, worst inclination error %.2f deg during the motion (bound %.1f), %.2f deg from 5 s "
-              "after it (bound %.1f); below 1 deg for good at most %.1f s after the motion\n",
-              title.c_str(), results.size(), worst, bounds.during_deg, worst_after, bounds.after_deg, worst_settle);
+  std::printf(
+      "%s: %zu runs, worst inclination error %.2f deg during the motion (bound %.1f), %.2f deg from 5 s "
+      "after it (bound %.1f); below 1 deg for good at most %.1f s after the motion\n",
+      title.c_str(), results.size(), worst, bounds.during_deg, worst_after, bounds.after_deg, worst_settle);
 }
 
 std::vector<std::function<study::Recording()>> seeds(const std::string& scenario, int count, sim::ImuGrade grade) {

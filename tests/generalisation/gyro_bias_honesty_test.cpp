@@ -44,13 +44,12 @@ Honesty biasHonesty(const sim::SimResult& result) {
     }
     sum2 += error.squaredNorm() / 3.0;
   });
-  return {static_cast<double>(within) / static_cast<double>(count),
-          std::sqrt(sum2 / static_cast<double>(count / 3))};
+  return {static_cast<double>(within) / static_cast<double>(count), std::sqrt(sum2 / static_cast<double>(count / 3))};
 }
 
 std::vector<std::string> motionScenarioNames() {
-  std::vector<std::string> names = {"urban-walk", "run", "crawl", "thesis-declination",
-                                    "shake", "shake-any", "handheld", "slow-rotation"};
+  std::vector<std::string> names = {"urban-walk", "run",       "crawl",    "thesis-declination",
+                                    "shake",      "shake-any", "handheld", "slow-rotation"};
   for (std::string& name : sim::phoneScenarioNames()) names.push_back(std::move(name));
   return names;
 }
@@ -75,8 +74,9 @@ INSTANTIATE_TEST_SUITE_P(GyroBiasHonesty, MotionClass,
                                                               sim::ImuGrade::kMems),
                                             ::testing::Values(100.0, 50.0)),
                          [](const auto& info) {
-                           std::string name = std::get<0>(info.param) + "_" + sim::imuGradeName(std::get<1>(info.param)) +
-                                              "_" + std::to_string(static_cast<int>(std::get<2>(info.param))) + "hz";
+                           std::string name = std::get<0>(info.param) + "_" +
+                                              sim::imuGradeName(std::get<1>(info.param)) + "_" +
+                                              std::to_string(static_cast<int>(std::get<2>(info.param))) + "hz";
                            for (char& c : name) {
                              if (c == '-') c = '_';
                            }

@@ -42,18 +42,18 @@ TEST_P(SimulatedClass, AtLeast90PercentOfHeadingErrorsLieWithin2Sigma) {
   EXPECT_GE(share, kMinShareWithin2Sigma);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    HeadingSigma, SimulatedClass,
-    ::testing::Combine(::testing::Values("urban-walk", "run", "crawl", "thesis-declination", "shake", "handheld",
-                                         "slow-rotation"),
-                       ::testing::Values(sim::ImuGrade::kMems, sim::ImuGrade::kConsumer)),
-    [](const auto& info) {
-      std::string name = std::string(std::get<0>(info.param)) + "_" + sim::imuGradeName(std::get<1>(info.param));
-      for (char& c : name) {
-        if (c == '-') c = '_';
-      }
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(HeadingSigma, SimulatedClass,
+                         ::testing::Combine(::testing::Values("urban-walk", "run", "crawl", "thesis-declination",
+                                                              "shake", "handheld", "slow-rotation"),
+                                            ::testing::Values(sim::ImuGrade::kMems, sim::ImuGrade::kConsumer)),
+                         [](const auto& info) {
+                           std::string name =
+                               std::string(std::get<0>(info.param)) + "_" + sim::imuGradeName(std::get<1>(info.param));
+                           for (char& c : name) {
+                             if (c == '-') c = '_';
+                           }
+                           return name;
+                         });
 
 // A sensor shaken in place hardly turns, so its calibration's residual hard iron makes one
 // field error for the whole run, which the sigma must cover as such (heading_field_turn_rad:

@@ -87,14 +87,13 @@ TEST_P(PhoneScenario, TheMagnetometersDelayIsLearnedWhereTheTurnsShowIt) {
   EXPECT_LE(disturbed_with, disturbed_without * 1.02) << scenario;
 }
 
-INSTANTIATE_TEST_SUITE_P(MagDelay, PhoneScenario, ::testing::ValuesIn(sim::phoneScenarioNames()),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name) {
-                             if (c == '-') c = '_';
-                           }
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(MagDelay, PhoneScenario, ::testing::ValuesIn(sim::phoneScenarioNames()), [](const auto& info) {
+  std::string name = info.param;
+  for (char& c : name) {
+    if (c == '-') c = '_';
+  }
+  return name;
+});
 
 // The study's check of the learned delay against a recording's reference
 // (reference_delay.hpp) finds the simulated phone's: the age of the field the rows carry,

@@ -60,7 +60,8 @@ TEST(RateIndependence, BroadResampledTo100And50HzStaysWithinTenPercentOfItsNativ
     for (std::size_t r = 1; r < rates.size(); ++r) {
       const double native = scores[0].rmse.inclination_rad / kRadPerDeg,
                    resampled = scores[r].rmse.inclination_rad / kRadPerDeg;
-      EXPECT_LE(std::abs(resampled - native), std::max(0.15 * native, 0.05)) << trials[t] << " at " << rates[r] << " Hz";
+      EXPECT_LE(std::abs(resampled - native), std::max(0.15 * native, 0.05))
+          << trials[t] << " at " << rates[r] << " Hz";
     }
   }
   const Means native = sums[0].mean();
@@ -129,8 +130,8 @@ TEST(RateIndependence, SimulatedMotionsGiveTheSameErrorsAt50To400Hz) {
         worst_after = std::max(worst_after, run.episode.max_inclination_after_rad / kRadPerDeg);
       }
       const Means mean = m.mean();
-      std::printf("%-14s %6.1f  %5.2f %5.2f %5.2f                                %5.2f\n", scenarios[s].c_str(), rates[r],
-                  mean.inclination, worst, worst_after, mean.aligned);
+      std::printf("%-14s %6.1f  %5.2f %5.2f %5.2f                                %5.2f\n", scenarios[s].c_str(),
+                  rates[r], mean.inclination, worst, worst_after, mean.aligned);
       // The tilt stays bounded at every rate (bounded_tilt_test.cpp asserts it over more seeds).
       EXPECT_LT(worst, 3.0) << scenarios[s] << " at " << rates[r] << " Hz";
       EXPECT_LT(worst_after, 1.0) << scenarios[s] << " at " << rates[r] << " Hz";

@@ -39,8 +39,9 @@ TEST(StudyScore, TheOpeningsHeadingErrorIsScoredApartFromTheRest) {
   EXPECT_LT(s.aligned_after_opening_rmse.heading_rad, 2.5 * kRadPerDeg);
   // The two parts are the whole run's samples: 2500 in the opening, 3500 after.
   const auto squares = [](double rmse, double n) { return rmse * rmse * n; };
-  EXPECT_NEAR(squares(s.aligned_opening_rmse.heading_rad, 2500) + squares(s.aligned_after_opening_rmse.heading_rad, 3500),
-              squares(s.aligned_rmse.heading_rad, 6000), 1e-9 * squares(s.aligned_rmse.heading_rad, 6000));
+  EXPECT_NEAR(
+      squares(s.aligned_opening_rmse.heading_rad, 2500) + squares(s.aligned_after_opening_rmse.heading_rad, 3500),
+      squares(s.aligned_rmse.heading_rad, 6000), 1e-9 * squares(s.aligned_rmse.heading_rad, 6000));
   // A run shorter than its opening has nothing after it.
   EXPECT_TRUE(std::isnan(study::score(r, estimates, 100.0).aligned_after_opening_rmse.heading_rad));
 }

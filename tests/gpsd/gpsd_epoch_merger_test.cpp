@@ -20,9 +20,13 @@ nmea::Fix tpv(const char* line) { return std::get<TpvReport>(parseGpsdReport(lin
 TEST(GpsdEpochMerger, TwoTpvsOfOneTimeAreOneEpochWithTheLaterValues) {
   std::vector<Delivered> out;
   GpsdEpochMerger m([&](const nmea::Fix& f, std::int64_t t) { out.push_back({f, t}); });
-  m.addTpv(tpv(R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:13.000Z","lat":59.33,"lon":18.07,"magvar":6.4,"speed":1.966})"), 100);
+  m.addTpv(
+      tpv(R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:13.000Z","lat":59.33,"lon":18.07,"magvar":6.4,"speed":1.966})"),
+      100);
   m.addSky(std::get<SkyReport>(parseGpsdReport(R"({"class":"SKY","hdop":1.07,"uSat":8})")));
-  m.addTpv(tpv(R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:13.000Z","lat":59.33,"lon":18.07,"track":33.36,"magvar":7.7,"speed":1.295})"), 200);
+  m.addTpv(
+      tpv(R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:13.000Z","lat":59.33,"lon":18.07,"track":33.36,"magvar":7.7,"speed":1.295})"),
+      200);
   EXPECT_TRUE(out.empty());
   m.addTpv(tpv(R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:14.000Z","lat":59.34,"lon":18.07})"), 300);
   ASSERT_EQ(out.size(), 1u);

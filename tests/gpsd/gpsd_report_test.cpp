@@ -31,7 +31,8 @@ TEST(GpsdReport, TpvGivesTimePositionCourseSpeedAndVariation) {
 }
 
 TEST(GpsdReport, HeightFromAltHaeAloneIsKeptAsHeightAboveTheEllipsoid) {
-  const auto r = parseGpsdReport(R"({"class":"TPV","mode":3,"lat":44.0,"lon":-121.0,"altHAE":1108.1,"geoidSep":-19.6})");
+  const auto r =
+      parseGpsdReport(R"({"class":"TPV","mode":3,"lat":44.0,"lon":-121.0,"altHAE":1108.1,"geoidSep":-19.6})");
   const auto& f = std::get<TpvReport>(r).fix;
   EXPECT_NEAR(*f.alt_msl_m + *f.geoid_separation_m, 1108.1, 1e-9);
   EXPECT_NEAR(*f.alt_msl_m, 1127.7, 1e-9);
@@ -64,20 +65,21 @@ TEST(GpsdReport, SkyGivesTheDops) {
 }
 
 TEST(GpsdReport, OtherClassesAreNamed) {
-  EXPECT_EQ(std::get<OtherReport>(parseGpsdReport(R"({"class":"VERSION","release":"3.22","proto_major":3})")).class_name,
-            "VERSION");
+  EXPECT_EQ(
+      std::get<OtherReport>(parseGpsdReport(R"({"class":"VERSION","release":"3.22","proto_major":3})")).class_name,
+      "VERSION");
 }
 
 TEST(GpsdReport, BadLinesAreMalformedWithAReason) {
   for (const char* line : {
-           R"({"class":"TPV","mode":3,"lat":59.3)",              // cut mid-way
-           R"(not json at all)",                                   //
-           R"([1,2,3])",                                           // not an object
-           R"({"mode":3})",                                        // no class
-           R"({"class":"TPV","mode":"3"})",                        // a string for a number
-           R"({"class":"TPV","mode":7})",                          // no such mode
-           R"({"class":"TPV","mode":3,"lat":91.0,"lon":0.0})",     // beyond the pole
-           R"({"class":"TPV","mode":3,"time":"yesterday"})",       // not ISO 8601
+           R"({"class":"TPV","mode":3,"lat":59.3)",                      // cut mid-way
+           R"(not json at all)",                                         //
+           R"([1,2,3])",                                                 // not an object
+           R"({"mode":3})",                                              // no class
+           R"({"class":"TPV","mode":"3"})",                              // a string for a number
+           R"({"class":"TPV","mode":7})",                                // no such mode
+           R"({"class":"TPV","mode":3,"lat":91.0,"lon":0.0})",           // beyond the pole
+           R"({"class":"TPV","mode":3,"time":"yesterday"})",             // not ISO 8601
            R"({"class":"TPV","mode":3,"time":"2026-02-30T00:00:00Z"})",  // no such day
            R"({"class":"SKY","hdop":"low"})",
        }) {
@@ -92,9 +94,9 @@ TEST(GpsdReport, IsoTimesWithAndWithoutFractions) {
   EXPECT_EQ(parseIsoUtcNs("1970-01-01T00:00:00Z"), 0);
   EXPECT_EQ(parseIsoUtcNs("1970-01-01T00:00:01.250Z"), 1'250'000'000);
   EXPECT_EQ(parseIsoUtcNs("2000-03-01T00:00:00.000Z"), 951'868'800'000'000'000);
-  EXPECT_FALSE(parseIsoUtcNs("2000-03-01T00:00:00.000"));    // no Z: not UTC
+  EXPECT_FALSE(parseIsoUtcNs("2000-03-01T00:00:00.000"));  // no Z: not UTC
   EXPECT_FALSE(parseIsoUtcNs("2000-03-01T24:00:00.000Z"));
-  EXPECT_FALSE(parseIsoUtcNs("6158-06-01T12:00:14Z"));      // beyond int64 nanoseconds (found by fuzzing)
+  EXPECT_FALSE(parseIsoUtcNs("6158-06-01T12:00:14Z"));  // beyond int64 nanoseconds (found by fuzzing)
   EXPECT_FALSE(parseIsoUtcNs("-999-06-01T12:00:14Z"));
   EXPECT_TRUE(parseIsoUtcNs("2200-12-31T23:59:59Z"));
   EXPECT_FALSE(parseIsoUtcNs("2000-03-01T00:00:00.000ZZ"));

@@ -315,7 +315,8 @@ TEST(LcmExport, ATableThatWouldBeTheLogItselfIsRefused) {
   EXPECT_NE(r.err.find("would be the log"), std::string::npos) << r.err;
   std::filesystem::create_directory(work.path() / "linked");
   std::filesystem::create_symlink(work.path() / "HEADING.csv", work.path() / "linked" / "HEADING.csv");
-  r = runExporter(work.path(), (work.path() / "HEADING.csv").string() + " --out-dir " + (work.path() / "linked").string());
+  r = runExporter(work.path(),
+                  (work.path() / "HEADING.csv").string() + " --out-dir " + (work.path() / "linked").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(readText(work.path() / "HEADING.csv"), before);
   EXPECT_FALSE(std::filesystem::exists(work.path() / "GPS.csv"));

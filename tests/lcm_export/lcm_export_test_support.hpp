@@ -179,10 +179,10 @@ class AwkwardValues {
 inline headingd::heading_t awkwardHeading(AwkwardValues& v) {
   headingd::heading_t m;
   v.fill(m.utime, m.sample_utime, m.sample_age_us, m.validity, m.heading_true_rad, m.heading_mag_rad,
-         m.heading_mag_sigma_rad, m.heading_true_sigma_rad, m.declination_rad,
-         m.declination_sigma_rad, m.declination_sources, m.declination_source, m.mount_yaw_rad, m.mount_yaw_sigma_rad,
-         m.mag_disturbed, m.mag_norm_jump, m.mag_dip_jump, m.mag_norm_reference, m.mag_dip_reference, m.mag_used,
-         m.mag_gain, m.mag_innovation_rad, m.heading_redefined);
+         m.heading_mag_sigma_rad, m.heading_true_sigma_rad, m.declination_rad, m.declination_sigma_rad,
+         m.declination_sources, m.declination_source, m.mount_yaw_rad, m.mount_yaw_sigma_rad, m.mag_disturbed,
+         m.mag_norm_jump, m.mag_dip_jump, m.mag_norm_reference, m.mag_dip_reference, m.mag_used, m.mag_gain,
+         m.mag_innovation_rad, m.heading_redefined);
   return m;
 }
 
@@ -237,8 +237,8 @@ inline headingd::status_t awkwardStatus(AwkwardValues& v, const std::vector<std:
   m.num_rings = 1;
   v.fill(m.rate_hz, m.ticks, m.deadline_misses, m.tick_jitter_p50_us, m.tick_jitter_p99_us, m.tick_jitter_max_us,
          m.processing_p50_us, m.processing_p99_us, m.processing_max_us, m.sample_age_p50_us, m.sample_age_p99_us,
-         m.heading_rate_hz, m.imu_rate_hz, m.gps_rate_hz, m.publish_errors, m.estimator_policy,
-         m.estimator_priority, m.driver_policy, m.driver_priority);
+         m.heading_rate_hz, m.imu_rate_hz, m.gps_rate_hz, m.publish_errors, m.estimator_policy, m.estimator_priority,
+         m.driver_policy, m.driver_priority);
   m.memory_locked = v.i8() % 2 != 0;
   m.counters = {counter("gate_gap", v.i64()), counter("weird, \"name\"", v.i64())};
   if (odd_counters) {

@@ -13,7 +13,8 @@ namespace headingd::lcm_export {
 namespace {
 
 TEST(LcmLogWriter, LcmsOwnReaderAndOursReadWhatItWrites) {
-  const std::string path = (std::filesystem::temp_directory_path() / ("writer-test-" + std::to_string(getpid()) + ".lcm")).string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("writer-test-" + std::to_string(getpid()) + ".lcm")).string();
   headingd::heading_t m{};
   m.declination_source = "wmm";
   {

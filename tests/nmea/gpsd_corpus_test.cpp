@@ -156,7 +156,7 @@ struct FileResult {
   std::size_t not_decoded = 0;     // ... whose sentence is input we did not decode
   std::size_t compared = 0;        // TPVs with at least one field both sides have
   std::size_t agreed = 0;
-  std::size_t known = 0;           // disagreements explained by kKnownDifferences
+  std::size_t known = 0;                         // disagreements explained by kKnownDifferences
   std::size_t latlon = 0, track = 0, speed = 0;  // field comparisons made
   std::size_t gpsd_only_latlon = 0, gpsd_only_track = 0, gpsd_only_speed = 0;
   std::size_t ours_only_latlon = 0;
@@ -175,8 +175,8 @@ FileResult checkFile(const std::string& name, Scope scope = Scope::kFixSentences
 
   std::istringstream chk(readFile(chk_path));
   std::string line;
-  std::size_t cursor = 0;              // next of our updates to match
-  const FixUpdate* state = nullptr;    // our update for the last fix sentence in the .chk
+  std::size_t cursor = 0;            // next of our updates to match
+  const FixUpdate* state = nullptr;  // our update for the last fix sentence in the .chk
   std::string last_sentence;
   enum class Match { kNone, kOurs, kGenerated, kNotDecoded } match = Match::kNone;
   while (std::getline(chk, line)) {
@@ -217,7 +217,8 @@ FileResult checkFile(const std::string& name, Scope scope = Scope::kFixSentences
     if (lat && lon && fix.position) {
       any = true;
       ++r.latlon;
-      if (std::abs(*lat - fix.position->lat_deg) > kLatLonTolDeg || std::abs(*lon - fix.position->lon_deg) > kLatLonTolDeg) {
+      if (std::abs(*lat - fix.position->lat_deg) > kLatLonTolDeg ||
+          std::abs(*lon - fix.position->lon_deg) > kLatLonTolDeg) {
         std::snprintf(buf, sizeof buf, "lat/lon gpsd %.9f,%.9f ours %.9f,%.9f", *lat, *lon, fix.position->lat_deg,
                       fix.position->lon_deg);
         bad.push_back(buf);
@@ -294,7 +295,8 @@ TEST_P(GpsdLog, ParsesTheSameWhateverTheChunking) {
   const ParseRun random = parseLog(log, 3u, 300);
   for (const ParseRun* run : {&bytewise, &random}) {
     ASSERT_EQ(run->updates.size(), whole.updates.size());
-    for (std::size_t i = 0; i < whole.updates.size(); ++i) ASSERT_EQ(run->updates[i].sentence, whole.updates[i].sentence);
+    for (std::size_t i = 0; i < whole.updates.size(); ++i)
+      ASSERT_EQ(run->updates[i].sentence, whole.updates[i].sentence);
     EXPECT_EQ(counterList(run->counters), counterList(whole.counters));
     EXPECT_EQ(run->comment_lines, whole.comment_lines);
     EXPECT_LE(run->max_buffered, headingd::nmea::FramerConfig{}.max_line_length);
@@ -313,8 +315,8 @@ TEST_P(GpsdCheck, AgreesWithGpsd) {
   const FileResult r = checkFile(GetParam());
   ASSERT_TRUE(r.has_chk);
   for (const auto& d : r.disagreements) ADD_FAILURE() << r.file << ": " << d;
-  std::printf("%-36s tpv_after_fix=%zu compared=%zu agreed=%zu known=%zu\n", r.file.c_str(), r.tpv_after_fix, r.compared,
-              r.agreed, r.known);
+  std::printf("%-36s tpv_after_fix=%zu compared=%zu agreed=%zu known=%zu\n", r.file.c_str(), r.tpv_after_fix,
+              r.compared, r.agreed, r.known);
 }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, GpsdLog, ::testing::ValuesIn(logFiles()),
@@ -325,8 +327,7 @@ INSTANTIATE_TEST_SUITE_P(Corpus, GpsdCheck, ::testing::ValuesIn(logFilesWithChk(
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GpsdLog);
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GpsdCheck);
 
-FileResult sum(const std::vector<std::string>& files, Scope scope, std::set<std::size_t>* known_used,
-               bool print_rows);
+FileResult sum(const std::vector<std::string>& files, Scope scope, std::set<std::size_t>* known_used, bool print_rows);
 
 void printRow(const FileResult& r) {
   const std::size_t disagree = r.compared - r.agreed - r.known + r.not_decoded;
@@ -335,8 +336,7 @@ void printRow(const FileResult& r) {
               r.gpsd_only_latlon, r.gpsd_only_track, r.gpsd_only_speed, r.ours_only_latlon);
 }
 
-FileResult sum(const std::vector<std::string>& files, Scope scope, std::set<std::size_t>* known_used,
-               bool print_rows) {
+FileResult sum(const std::vector<std::string>& files, Scope scope, std::set<std::size_t>* known_used, bool print_rows) {
   FileResult total;
   total.file = "TOTAL";
   total.has_chk = true;
@@ -364,7 +364,8 @@ FileResult sum(const std::vector<std::string>& files, Scope scope, std::set<std:
     total.gpsd_only_track += r.gpsd_only_track;
     total.gpsd_only_speed += r.gpsd_only_speed;
     total.ours_only_latlon += r.ours_only_latlon;
-    if (!print_rows) total.disagreements.insert(total.disagreements.end(), r.disagreements.begin(), r.disagreements.end());
+    if (!print_rows)
+      total.disagreements.insert(total.disagreements.end(), r.disagreements.begin(), r.disagreements.end());
   }
   return total;
 }
@@ -375,10 +376,11 @@ TEST(GpsdCorpus, AgreementTable) {
   const auto files = logFiles();
   ASSERT_FALSE(files.empty()) << "no .log files in " << kLogsDir;
   std::set<std::size_t> known_used;
-  std::printf("gpsd TPV reports after GGA/RMC/GNS vs our Fix after the same sentence.\n"
-              "columns: reports | of those, after sentences gpsd made up from binary input | compared (>= 1 common\n"
-              "field) | agreed | known gpsd quirks | disagreements | comparisons made per field | fields only gpsd\n"
-              "has (its derived speed, quality-0 positions) | positions only we have (gpsd said mode 1)\n");
+  std::printf(
+      "gpsd TPV reports after GGA/RMC/GNS vs our Fix after the same sentence.\n"
+      "columns: reports | of those, after sentences gpsd made up from binary input | compared (>= 1 common\n"
+      "field) | agreed | known gpsd quirks | disagreements | comparisons made per field | fields only gpsd\n"
+      "has (its derived speed, quality-0 positions) | positions only we have (gpsd said mode 1)\n");
   std::printf("%-33s %7s %4s %6s %6s %5s %5s | %6s %5s %5s | %s %s %s | %s\n", "file", "reports", "gen", "compar",
               "agreed", "known", "disag", "latlon", "track", "speed", "g_ll", "g_trk", "g_spd", "ours_ll");
   const FileResult total = sum(files, Scope::kFixSentences, &known_used, true);

@@ -56,8 +56,8 @@ TEST(HeadingSentences, HdtTextAndChecksumAreExact) {
 
 TEST(HeadingSentences, EveryChecksumIsTheXorOfTheBody) {
   for (double deg = -725.0; deg < 725.0; deg += 0.37) {
-    for (const SentenceText& s : {formatHdt("HE", deg), formatThs("GP", deg, ThsMode::kEstimated),
-                                  formatHdg("HC", deg, 0.0, deg / 4.0)}) {
+    for (const SentenceText& s :
+         {formatHdt("HE", deg), formatThs("GP", deg, ThsMode::kEstimated), formatHdg("HC", deg, 0.0, deg / 4.0)}) {
       const std::string t = text(s);
       ASSERT_GE(t.size(), 6u);
       ASSERT_EQ(t.substr(t.size() - 2), "\r\n");
@@ -97,14 +97,12 @@ TEST(HeadingSentences, ThsCarriesEachMode) {
 }
 
 TEST(HeadingSentences, HdgCarriesDeviationAndVariationAsEastWest) {
-  EXPECT_EQ(text(formatHdg("HE", 205.63, 0.0, -2.94)), "$HEHDG,205.6,0.0,E,2.9,W*" +
-                                                           [] {
-                                                             char hex[3];
-                                                             std::snprintf(hex, sizeof hex, "%02X",
-                                                                           checksumOf("HEHDG,205.6,0.0,E,2.9,W"));
-                                                             return std::string(hex);
-                                                           }() +
-                                                           "\r\n");
+  EXPECT_EQ(
+      text(formatHdg("HE", 205.63, 0.0, -2.94)), "$HEHDG,205.6,0.0,E,2.9,W*" + [] {
+        char hex[3];
+        std::snprintf(hex, sizeof hex, "%02X", checksumOf("HEHDG,205.6,0.0,E,2.9,W"));
+        return std::string(hex);
+      }() + "\r\n");
   const Hdg east = decodeWith(decodeHdg, formatHdg("HE", 10.0, 1.5, 7.7));
   EXPECT_EQ(east.heading_deg, 10.0);
   EXPECT_EQ(east.deviation_deg, 1.5);

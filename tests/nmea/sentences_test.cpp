@@ -33,7 +33,8 @@ TEST(Sentences, Gga) {
 }
 
 TEST(Sentences, GgaWithDgpsFields) {
-  const auto g = decodeAs<Gga>("GPGGA,132820.60,4134.49821229,N,09345.03351845,W,2,09,1.0,278.020,M,-31.442,M,7.6,0133");
+  const auto g =
+      decodeAs<Gga>("GPGGA,132820.60,4134.49821229,N,09345.03351845,W,2,09,1.0,278.020,M,-31.442,M,7.6,0133");
   EXPECT_NEAR(g.position->lon_deg, -93.750558641, 1e-9);
   EXPECT_DOUBLE_EQ(*g.dgps_age_s, 7.6);
   EXPECT_EQ(*g.dgps_station, 133);
@@ -94,7 +95,8 @@ TEST(Sentences, RmcVariationBeyond180DegreesIsNotUsedAndCounted) {
   const auto d = decodeOk("GPRMC,125106,A,3854.5087,N,07726.4523,W,0.0,0.0,241011,200.0,E,A");
   EXPECT_FALSE(std::get<Rmc>(d.data).magvar_deg);
   EXPECT_EQ(d.invalid_fields, 1);
-  EXPECT_DOUBLE_EQ(*decodeAs<Rmc>("GPRMC,125106,A,3854.5087,N,07726.4523,W,0.0,0.0,241011,180.0,W,A").magvar_deg, -180.0);
+  EXPECT_DOUBLE_EQ(*decodeAs<Rmc>("GPRMC,125106,A,3854.5087,N,07726.4523,W,0.0,0.0,241011,180.0,W,A").magvar_deg,
+                   -180.0);
 }
 
 TEST(Sentences, RmcVersionsByFieldCount) {
@@ -217,7 +219,8 @@ TEST(Sentences, EveryGnssTalker) {
 }
 
 TEST(Sentences, OthersAreClassifiedNotDecoded) {
-  EXPECT_EQ(statusOf("GPGSV,3,1,10,03,41,050,46,07,60,317,49,08,34,315,45,11,35,148,45"), DecodeStatus::kUnsupportedType);
+  EXPECT_EQ(statusOf("GPGSV,3,1,10,03,41,050,46,07,60,317,49,08,34,315,45,11,35,148,45"),
+            DecodeStatus::kUnsupportedType);
   EXPECT_EQ(statusOf("GPTXT,01,01,02,ANTSTATUS=OK"), DecodeStatus::kUnsupportedType);
   EXPECT_EQ(statusOf("PGRME,15.0,M,45.0,M,25.0,M"), DecodeStatus::kUnsupportedTalker);
   EXPECT_EQ(statusOf("PSTI,030,,,,"), DecodeStatus::kUnsupportedTalker);

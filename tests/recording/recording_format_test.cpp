@@ -64,7 +64,8 @@ TEST(RecordingFormat, NotesAndPlacementsReadBack) {
   ASSERT_TRUE(parseEstimatorLine(std::string_view(line, formatCalibrationReloaded(9, 3, line)), placed, &error));
   EXPECT_EQ(placed.op, EstimatorOp::kCalibrationReloaded);
   // A count above 2^63 is written unsigned, as it is read.
-  ASSERT_TRUE(parseEstimatorLine(std::string_view(line, formatGpsPlaced(1, 18446744073709551615u, line)), placed, &error))
+  ASSERT_TRUE(
+      parseEstimatorLine(std::string_view(line, formatGpsPlaced(1, 18446744073709551615u, line)), placed, &error))
       << std::string(line, formatGpsPlaced(1, 18446744073709551615u, line));
   EXPECT_EQ(placed.imu_samples_before, 18446744073709551615u);
   EXPECT_FALSE(parseEstimatorLine("12 g", placed, &error));

@@ -53,7 +53,8 @@ struct Folder {
 };
 
 bool sameSample(const core::ImuSample& a, const core::ImuSample& b) {
-  return a.t_ns == b.t_ns && a.gyro_rad_s == b.gyro_rad_s && a.accel_m_s2 == b.accel_m_s2 && a.mag_uT == b.mag_uT && a.has_mag == b.has_mag;
+  return a.t_ns == b.t_ns && a.gyro_rad_s == b.gyro_rad_s && a.accel_m_s2 == b.accel_m_s2 && a.mag_uT == b.mag_uT &&
+         a.has_mag == b.has_mag;
 }
 
 // The fixture's recording: 60 IMU samples at 100 Hz as CAN frames, the first GPS epochs of a
@@ -64,9 +65,10 @@ class RecordingReaderTest : public ::testing::Test {
     const std::string can_table = std::regex_replace(slurp(HEADINGD_CONFIG_DIR "/can-headingd.toml"),
                                                      std::regex("dbc = \"dbc/headingd_imu.dbc\""), "dbc = \"imu.dbc\"");
     std::filesystem::copy_file(HEADINGD_CONFIG_DIR "/dbc/headingd_imu.dbc", folder.file("imu.dbc"));
-    folder.write("header.toml", "format = \"headingd-recording\"\nformat_version = 1\nprogram_version = \"test\"\n"
-                                "start_utc = \"2026-12-02T00:00:00.000000Z\"\ncan_time_offset_ns = " +
-                                    std::to_string(kOffsetNs) + "\n");
+    folder.write("header.toml",
+                 "format = \"headingd-recording\"\nformat_version = 1\nprogram_version = \"test\"\n"
+                 "start_utc = \"2026-12-02T00:00:00.000000Z\"\ncan_time_offset_ns = " +
+                     std::to_string(kOffsetNs) + "\n");
     folder.write("config.toml", can_table + "\n[gps]\ndevice = \"/dev/null\"\n");
     writeCan();
     writeGps();
@@ -132,7 +134,8 @@ class RecordingReaderTest : public ::testing::Test {
     });
     std::int64_t t = 4'000'000'000;
     for (std::size_t at = 0; at < nmea.size(); at += 50, t += 10'000'000) {
-      const std::span bytes(reinterpret_cast<const std::uint8_t*>(nmea.data()) + at, std::min<std::size_t>(50, nmea.size() - at));
+      const std::span bytes(reinterpret_cast<const std::uint8_t*>(nmea.data()) + at,
+                            std::min<std::size_t>(50, nmea.size() - at));
       recorder.fed(bytes, t);
       live.feed(bytes, t);
       if (at == 1000) {  // the line went quiet once

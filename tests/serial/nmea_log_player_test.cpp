@@ -93,14 +93,15 @@ TEST(NmeaLogPlayer, UntimedLinesGoWithTheirEpochAndGapsMidnightAndResetsArePlaye
   {
     std::ofstream f(path, std::ios::binary);
     f << "# recorded by a test\n"
-      << vtg << "\r\n"                              // before any time: played at once, no epoch
-      << gga("235958.00") << "\r\n" << vtg << "\r\n"  // epoch 0
-      << gga("235959.00") << "\r" << vtg << "\r"      // CR-only line ends; 1 s
-      << gga("000000.00") << "\n"                     // midnight: 1 s, not -86399 s
-      << gga("000030.00") << "\n"                     // a 30 s gap in the log: played as max_gap_s
-      << gga("000020.00") << "\n"                     // backwards (receiver reset): at once
+      << vtg << "\r\n"  // before any time: played at once, no epoch
+      << gga("235958.00") << "\r\n"
+      << vtg << "\r\n"                            // epoch 0
+      << gga("235959.00") << "\r" << vtg << "\r"  // CR-only line ends; 1 s
+      << gga("000000.00") << "\n"                 // midnight: 1 s, not -86399 s
+      << gga("000030.00") << "\n"                 // a 30 s gap in the log: played as max_gap_s
+      << gga("000020.00") << "\n"                 // backwards (receiver reset): at once
       << "garbage without time\n"
-      << gga("000021.00") << "\n";                    // 1 s
+      << gga("000021.00") << "\n";  // 1 s
   }
   constexpr double kSpeed = 10.0;
   nmea::NmeaLogPlayerCounters c;

@@ -59,8 +59,8 @@ const char* holdWithName(HoldWith h) {
 }
 
 PortHolder::PortHolder(const std::string& device, HoldWith how, const std::string& name) {
-  void* shared = ::mmap(nullptr, sizeof(std::atomic<std::uint64_t>), PROT_READ | PROT_WRITE,
-                        MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  void* shared =
+      ::mmap(nullptr, sizeof(std::atomic<std::uint64_t>), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
   if (shared == MAP_FAILED) throw std::runtime_error(std::string("mmap: ") + std::strerror(errno));
   read_ = new (shared) std::atomic<std::uint64_t>(0);
   int control[2], ready[2];

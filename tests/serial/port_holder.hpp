@@ -14,7 +14,7 @@
 namespace headingd::test {
 
 enum class HoldWith { kExclusiveMode, kFlock, kBoth };
-const char* holdWithName(HoldWith h);  // "ExclusiveMode", "Flock", "Both"
+const char* holdWithName(HoldWith h);                                          // "ExclusiveMode", "Flock", "Both"
 inline void PrintTo(HoldWith h, std::ostream* os) { *os << holdWithName(h); }  // for GoogleTest
 
 class PortHolder {
@@ -34,7 +34,7 @@ class PortHolder {
 
  private:
   pid_t pid_ = -1;
-  int control_fd_ = -1;                      // closed to tell the child to let go
+  int control_fd_ = -1;                         // closed to tell the child to let go
   std::atomic<std::uint64_t>* read_ = nullptr;  // in memory shared with the child
 };
 

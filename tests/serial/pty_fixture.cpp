@@ -18,9 +18,7 @@
 namespace headingd::test {
 namespace {
 
-[[noreturn]] void throwErrno(const std::string& what) {
-  throw std::system_error(errno, std::generic_category(), what);
-}
+[[noreturn]] void throwErrno(const std::string& what) { throw std::system_error(errno, std::generic_category(), what); }
 
 }  // namespace
 
@@ -68,8 +66,9 @@ void PtyPair::write(std::span<const std::uint8_t> bytes, std::chrono::millisecon
     if (n < 0 && errno != EAGAIN) throwErrno("write to pty master");
     pollfd p{master_fd_, POLLOUT, 0};
     const int r = ::poll(&p, 1, static_cast<int>(stall_timeout.count()));
-    if (r == 0) throw std::runtime_error("pty master: the reader took no bytes for " +
-                                         std::to_string(stall_timeout.count()) + " ms");
+    if (r == 0)
+      throw std::runtime_error("pty master: the reader took no bytes for " + std::to_string(stall_timeout.count()) +
+                               " ms");
     if (r < 0 && errno != EINTR) throwErrno("poll pty master");
   }
 }

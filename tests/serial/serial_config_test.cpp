@@ -38,8 +38,8 @@ TEST(GpsConfig, ShippedExampleSetsEveryKeyToItsDefault) {
   EXPECT_EQ(parsed.reopen_backoff_max_s, defaults.reopen_backoff_max_s);
   EXPECT_EQ(parsed.epoch_idle_s, defaults.epoch_idle_s);
   // Every key is written out (commented examples do not count).
-  for (const char* key : {"enabled", "device", "baud", "reopen_backoff_initial_s", "reopen_backoff_max_s",
-                          "epoch_idle_s"}) {
+  for (const char* key :
+       {"enabled", "device", "baud", "reopen_backoff_initial_s", "reopen_backoff_max_s", "epoch_idle_s"}) {
     EXPECT_NE(text.find(std::string("\n") + key + " = "), std::string::npos) << key;
   }
 }
@@ -80,8 +80,9 @@ TEST(GpsConfig, BadValuesNameFileLineKeyAndWhatWasExpected) {
   EXPECT_EQ(errorOf("[gps]\nbaudrate = 9600\n"),
             "test.toml:2: [gps] baudrate: unknown key (expected one of: enabled, source, device, baud, "
             "reopen_backoff_initial_s, reopen_backoff_max_s, epoch_idle_s; config/gps.toml documents them)");
-  EXPECT_EQ(errorOf("[gps]\nreopen_backoff_initial_s = 2\nreopen_backoff_max_s = 1\n"),
-            "test.toml:3: [gps] reopen_backoff_max_s: 1 is below reopen_backoff_initial_s (2), expected max >= initial");
+  EXPECT_EQ(
+      errorOf("[gps]\nreopen_backoff_initial_s = 2\nreopen_backoff_max_s = 1\n"),
+      "test.toml:3: [gps] reopen_backoff_max_s: 1 is below reopen_backoff_initial_s (2), expected max >= initial");
   EXPECT_EQ(errorOf("gps = 3\n"), "test.toml:1: 'gps' must be a table ([gps])");
   const std::string syntax = errorOf("[gps]\ndevice = \"/dev/gps0\n");
   EXPECT_EQ(syntax.rfind("test.toml:2: TOML syntax error: ", 0), 0u) << syntax;

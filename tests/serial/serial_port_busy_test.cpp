@@ -18,19 +18,18 @@
 #include <fstream>
 #include <string>
 
-#include "test_data.hpp"
 #include "headingd/nmea/serial_gps_reader.hpp"
 #include "headingd/nmea/serial_port_open.hpp"
 #include "port_holder.hpp"
 #include "pty_fixture.hpp"
 #include "serial_reader_harness.hpp"
 #include "serial_test_support.hpp"
+#include "test_data.hpp"
 
 namespace headingd::test {
 namespace {
 
 using nmea::SerialGpsState;
-
 
 // Whether this process may open a tty in exclusive mode (bit 21 of CapEff, CAP_SYS_ADMIN).
 bool hasCapSysAdmin() {

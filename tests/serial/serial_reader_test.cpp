@@ -70,9 +70,8 @@ TEST_P(CaptureOverPty, DeliversTheParsersFixesAndCounters) {
 
 // NMEA receivers of several makes; ublox-8.log has UBX binary packets between sentences.
 INSTANTIATE_TEST_SUITE_P(GpsdLogs, CaptureOverPty,
-                         ::testing::Values("mt3339.log", "sirfstarv-nmea.log", "furuno_gl_ga.log",
-                                           "garmin-geko201.log", "bu353s4.log", "GPSmap-76S.log",
-                                           "ublox-8.log"),
+                         ::testing::Values("mt3339.log", "sirfstarv-nmea.log", "furuno_gl_ga.log", "garmin-geko201.log",
+                                           "bu353s4.log", "GPSmap-76S.log", "ublox-8.log"),
                          [](const auto& info) {
                            std::string n;
                            for (const char ch : std::string(info.param)) n += std::isalnum(ch) ? ch : '_';
@@ -120,8 +119,8 @@ TEST(SerialGpsReader, RealLineRateDeliversEachEpochAtTheEndOfItsBurst) {
     const std::int64_t t0 = monotonicNowNs();
     pty.writePaced(std::span(wire).subspan(from, to - from), lineBytesPerSecond(9600));
     const std::int64_t t1 = monotonicNowNs();
-    ASSERT_TRUE(waitFor([&] { return h.received.fixCount() >= static_cast<std::size_t>(burst + 1); },
-                        std::chrono::seconds(2)));
+    ASSERT_TRUE(
+        waitFor([&] { return h.received.fixCount() >= static_cast<std::size_t>(burst + 1); }, std::chrono::seconds(2)));
     {
       std::lock_guard lock(h.received.mutex);
       EXPECT_EQ(h.received.fixes.back(), want[static_cast<std::size_t>(burst)]);
@@ -156,7 +155,8 @@ TEST(SerialGpsReader, GarbageBetweenSentencesIsCountedAndChangesNoFix) {
       const int n = 1 + static_cast<int>(rng() % 40);
       for (int k = 0; k < n; ++k) {
         std::uint8_t b;
-        do b = static_cast<std::uint8_t>(rng()); while (b == '$' || b == '!' || b == '\r' || b == '\n');
+        do b = static_cast<std::uint8_t>(rng());
+        while (b == '$' || b == '!' || b == '\r' || b == '\n');
         dirty.push_back(b);
         ++noise_bytes;
       }

@@ -61,7 +61,8 @@ inline std::string fixText(const nmea::Fix& f) {
 
 // The epochs of the pure parser on the same bytes, by replay's rule (nmea_epochs.cpp): the
 // Fix after the last sentence of each UTC time of day.
-inline std::vector<std::string> referenceEpochs(std::span<const std::uint8_t> bytes, nmea::Counters* counters = nullptr) {
+inline std::vector<std::string> referenceEpochs(std::span<const std::uint8_t> bytes,
+                                                nmea::Counters* counters = nullptr) {
   nmea::Parser parser;
   std::vector<nmea::FixUpdate> updates;
   parser.feed(bytes, updates);

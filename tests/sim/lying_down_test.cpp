@@ -40,7 +40,7 @@ struct Figures {
   double lying_heading_sq = 0.0;                   // published heading against the true head's
   double worst_lying_heading_rad = 0.0;
   double upright_heading_sq = 0.0;
-  double worst_axis_heading_rad = 0.0;  // published against the true head axis through the estimate
+  double worst_axis_heading_rad = 0.0;                 // published against the true head axis through the estimate
   std::size_t unlearned = 0, unlearned_redefined = 0;  // samples before the up axis is learned
 };
 

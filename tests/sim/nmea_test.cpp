@@ -39,8 +39,8 @@ std::vector<std::vector<std::string>> parseSentences(const std::string& text) {
 
 // Seconds after 12:00:00 of "hhmmss.ss".
 double secondsAfterNoon(const std::string& hhmmss) {
-  return std::stod(hhmmss.substr(0, 2)) * 3600.0 + std::stod(hhmmss.substr(2, 2)) * 60.0 +
-         std::stod(hhmmss.substr(4)) - 12.0 * 3600.0;
+  return std::stod(hhmmss.substr(0, 2)) * 3600.0 + std::stod(hhmmss.substr(2, 2)) * 60.0 + std::stod(hhmmss.substr(4)) -
+         12.0 * 3600.0;
 }
 
 TEST(Nmea, ChecksumOfAKnownSentence) {

@@ -274,7 +274,8 @@ std::vector<double> peakToPeakPerWindow(const sim::SimResult& r, F value) {
   std::vector<double> v;
   forWalkingRows(r, [&](std::size_t, const sim::ImuRow& row) { v.push_back(value(row)); });
   for (std::size_t i = 0; i + window <= v.size(); i += window) {
-    const auto [lo, hi] = std::minmax_element(v.begin() + static_cast<long>(i), v.begin() + static_cast<long>(i + window));
+    const auto [lo, hi] =
+        std::minmax_element(v.begin() + static_cast<long>(i), v.begin() + static_cast<long>(i + window));
     out.push_back(*hi - *lo);
   }
   return out;
@@ -313,7 +314,8 @@ TEST(PhoneCarry, SwingingIsAPendulumOfThirtyToSixtyDegrees) {
     EXPECT_GE(amplitude, 30.0);
     EXPECT_LE(amplitude, 60.0);
     // The phone's top (forward in the hand) rises and falls with the arm.
-    for (const double p2p : peakToPeakPerWindow(r, [](const sim::ImuRow& row) { return elevationDeg(row.q_ns, Vec3::UnitX()); })) {
+    for (const double p2p :
+         peakToPeakPerWindow(r, [](const sim::ImuRow& row) { return elevationDeg(row.q_ns, Vec3::UnitX()); })) {
       EXPECT_GT(p2p, 2.0 * amplitude - 8.0) << "seed " << seed;
       EXPECT_LT(p2p, 2.0 * amplitude + 8.0) << "seed " << seed;
     }
@@ -332,7 +334,8 @@ TEST(PhoneCarry, PocketTurnsWithTheThighAndDrawsEveryPlacement) {
     forWalkingRows(r, [&](std::size_t k, const sim::ImuRow& row) {
       ASSERT_GT(upright * elevationDeg(row.q_ns, Vec3::UnitX()), 90.0 - 40.0) << "seed " << seed << " row " << k;
     });
-    for (const double p2p : peakToPeakPerWindow(r, [](const sim::ImuRow& row) { return elevationDeg(row.q_ns, Vec3::UnitX()); })) {
+    for (const double p2p :
+         peakToPeakPerWindow(r, [](const sim::ImuRow& row) { return elevationDeg(row.q_ns, Vec3::UnitX()); })) {
       EXPECT_GT(p2p, 12.0) << "seed " << seed;  // elevation near 90 deg compresses the swing
     }
     for (const double p2p : peakToPeakPerWindow(r, [](const sim::ImuRow& row) {
@@ -343,7 +346,8 @@ TEST(PhoneCarry, PocketTurnsWithTheThighAndDrawsEveryPlacement) {
       EXPECT_LT(p2p, 50.0) << "seed " << seed;
     }
   }
-  for (const char* m : {"pocket-front-upright", "pocket-front-upside-down", "pocket-back-upright", "pocket-back-upside-down"}) {
+  for (const char* m :
+       {"pocket-front-upright", "pocket-front-upside-down", "pocket-back-upright", "pocket-back-upside-down"}) {
     EXPECT_TRUE(modes.contains(m)) << m;
   }
 }

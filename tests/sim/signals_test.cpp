@@ -157,7 +157,7 @@ TEST(Mag, UrbanWalkIsDisturbedIndoorsAndAlmostCleanOutdoors) {
     }
   }
   ASSERT_GT(indoor_n, 0u);
-  EXPECT_GT(indoor_sum / indoor_n, 5.0);   // offsets of 8-12 µT plus the spatial field
+  EXPECT_GT(indoor_sum / indoor_n, 5.0);    // offsets of 8-12 µT plus the spatial field
   EXPECT_LT(outdoor_sum / outdoor_n, 2.0);  // only passing cars
 }
 

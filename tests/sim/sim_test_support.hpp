@@ -45,10 +45,21 @@ inline const sim::SimResult& run(const sim::SimConfig& c) {
   using Key = std::tuple<std::string, std::uint64_t, int, double, double, double, double, double, double, double,
                          double, int, int, int, int>;
   static std::map<Key, sim::SimResult> cache;
-  const Key key{c.scenario,       c.seed,           static_cast<int>(c.imu_grade), c.imu_rate_hz,
-                c.gps_rate_hz,    c.mount_yaw_deg,  c.mount_pitch_deg,             c.mount_roll_deg,
-                c.decl_anomaly_deg, c.origin.latitude_deg, c.origin.longitude_deg, c.year,
-                c.month,          c.day,            static_cast<int>(c.vector_sampling)};
+  const Key key{c.scenario,
+                c.seed,
+                static_cast<int>(c.imu_grade),
+                c.imu_rate_hz,
+                c.gps_rate_hz,
+                c.mount_yaw_deg,
+                c.mount_pitch_deg,
+                c.mount_roll_deg,
+                c.decl_anomaly_deg,
+                c.origin.latitude_deg,
+                c.origin.longitude_deg,
+                c.year,
+                c.month,
+                c.day,
+                static_cast<int>(c.vector_sampling)};
   auto it = cache.find(key);
   if (it == cache.end()) it = cache.emplace(key, sim::simulate(c, shippedWmm())).first;
   return it->second;

@@ -61,11 +61,11 @@ TEST_F(SimTool, WritesTheSameFilesForTheSameSeed) {
 TEST_F(SimTool, HelpStatesTheConventionsAndListsTheScenarios) {
   ASSERT_EQ(run("--help"), 0);
   const std::string help = out();
-  for (const char* text : {"TRUE attitude q_nb of the", "SENSOR, mapping sensor axes to NED", "12:00:00",
-                           "thesis-declination (244 s)", "urban-walk (600 s)", "static-disturbed (120 s)",
-                           "crawl (116 s)", "run (180 s)", "indoor-static (310 s)", "moving-disturbances (210 s)",
-                           "vehicle-ride (305 s)", "phone-texting (", "phone-calling (", "phone-swinging (",
-                           "phone-pocket (", "phone-running (", "phone-running-circles (", "phone (drawn per seed"}) {
+  for (const char* text :
+       {"TRUE attitude q_nb of the", "SENSOR, mapping sensor axes to NED", "12:00:00", "thesis-declination (244 s)",
+        "urban-walk (600 s)", "static-disturbed (120 s)", "crawl (116 s)", "run (180 s)", "indoor-static (310 s)",
+        "moving-disturbances (210 s)", "vehicle-ride (305 s)", "phone-texting (", "phone-calling (", "phone-swinging (",
+        "phone-pocket (", "phone-running (", "phone-running-circles (", "phone (drawn per seed"}) {
     EXPECT_NE(help.find(text), std::string::npos) << text;
   }
 }
@@ -82,8 +82,9 @@ TEST_F(SimTool, BadArgumentsExitWithTwo) {
 }
 
 TEST_F(SimTool, PhoneGradeWritesItsTimingAndTheTrueGyroBias) {
-  ASSERT_EQ(run("--scenario phone-pocket --seed 3 --imu-grade phone --rate-hz 50 --out-dir '" + (dir_ / "p").string() + "'"),
-            0)
+  ASSERT_EQ(
+      run("--scenario phone-pocket --seed 3 --imu-grade phone --rate-hz 50 --out-dir '" + (dir_ / "p").string() + "'"),
+      0)
       << err();
   const std::string errors = slurp(dir_ / "p" / "sensor_errors.toml");
   for (const char* text : {"imu_grade = \"phone\"", "[timing]", "mag_rate_hz = ", "mag_lag_s = ", "accel_lag_s = "}) {

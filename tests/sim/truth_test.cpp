@@ -16,13 +16,28 @@ using core::kRadPerDeg;
 
 TEST(Scenarios, DurationsAndRowCounts) {
   const std::map<std::string, double> expected = {
-      {"thesis-declination", 244.0}, {"urban-walk", 600.0}, {"static-disturbed", 120.0}, {"crawl", 116.0},
-      {"run", 180.0}, {"calib-six-position", 122.0}, {"calib-rotation", 4.0}, {"calib-rotation-long", 60.0},
-      {"shake", 100.0}, {"shake-any", 100.0}, {"handheld", 100.0}, {"slow-rotation", 120.0},
-      {"indoor-static", 310.0}, {"moving-disturbances", 210.0}, {"vehicle-ride", 305.0},
+      {"thesis-declination", 244.0},
+      {"urban-walk", 600.0},
+      {"static-disturbed", 120.0},
+      {"crawl", 116.0},
+      {"run", 180.0},
+      {"calib-six-position", 122.0},
+      {"calib-rotation", 4.0},
+      {"calib-rotation-long", 60.0},
+      {"shake", 100.0},
+      {"shake-any", 100.0},
+      {"handheld", 100.0},
+      {"slow-rotation", 120.0},
+      {"indoor-static", 310.0},
+      {"moving-disturbances", 210.0},
+      {"vehicle-ride", 305.0},
       // The phone scenarios draw their opening rest (1-5 s) before 115 s of walking (running: 110 s).
-      {"phone-texting", 115.0}, {"phone-calling", 115.0}, {"phone-swinging", 115.0}, {"phone-pocket", 115.0},
-      {"phone-running", 110.0}, {"phone-running-circles", 110.0}};
+      {"phone-texting", 115.0},
+      {"phone-calling", 115.0},
+      {"phone-swinging", 115.0},
+      {"phone-pocket", 115.0},
+      {"phone-running", 110.0},
+      {"phone-running-circles", 110.0}};
   ASSERT_EQ(sim::scenarioNames().size(), expected.size());
   for (const std::string& name : sim::scenarioNames()) {
     const sim::Scenario s = sim::makeScenario(name);

@@ -29,8 +29,7 @@ inline std::vector<std::filesystem::path> files(const DataSet& set) {
       found.push_back(e.path());
     }
   }
-  std::sort(found.begin(), found.end(),
-            [](const auto& a, const auto& b) { return a.filename() < b.filename(); });
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.filename() < b.filename(); });
   return found;
 }
 

@@ -12,8 +12,8 @@
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/toml_document.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/files/input_file.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace headingd::core {
 namespace {

@@ -42,7 +42,8 @@ TEST(EpochCompass, TurningAndAcceleratingSensorGivesItsMeanHeading) {
     const Quat q = attitude(5.0 * kRadPerDeg, 3.0 * kRadPerDeg, 40.0 * kRadPerDeg + rate * t);
     const Vec3 body_rate = Vec3(0.0, 0.0, rate);  // about NED down; in body axes:
     const Vec3 gyro = attitude(5.0 * kRadPerDeg, 3.0 * kRadPerDeg, 0.0).conjugate() * body_rate;
-    const Vec3 walking_n(2.0 * std::sin(2.0 * std::numbers::pi * 2.0 * t), 0.0, 1.5 * std::cos(2.0 * std::numbers::pi * 2.0 * t));
+    const Vec3 walking_n(2.0 * std::sin(2.0 * std::numbers::pi * 2.0 * t), 0.0,
+                         1.5 * std::cos(2.0 * std::numbers::pi * 2.0 * t));
     const Vec3 accel = q.conjugate() * (kSpecificForceNed + walking_n), mag = q.conjugate() * kFieldNed;
     compass.add(gyro, accel, &mag, 0.01);
   }
@@ -60,7 +61,7 @@ TEST(EpochCompass, TooFewSamplesOrNoFieldGiveNothingAndStartAnInterval) {
   EXPECT_FALSE(compass.takeHeading(50, 0.1).has_value());  // no magnetometer sample
   for (int i = 0; i < 100; ++i) compass.add(Vec3::Zero(), accel, i % 5 == 0 ? &mag : nullptr, 0.01);
   ASSERT_TRUE(compass.takeHeading(50, 0.1).has_value());  // a slower magnetometer is fine
-  const Vec3 vertical_field(0.0, 0.0, 50.0);  // at a magnetic pole: no horizontal field
+  const Vec3 vertical_field(0.0, 0.0, 50.0);              // at a magnetic pole: no horizontal field
   for (int i = 0; i < 100; ++i) compass.add(Vec3::Zero(), accel, &vertical_field, 0.01);
   EXPECT_FALSE(compass.takeHeading(50, 0.1).has_value());
 }

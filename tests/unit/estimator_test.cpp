@@ -258,7 +258,8 @@ TEST(Estimator, RecoversFromARotationDuringAGap) {
   for (std::size_t i = 0; i < sc.samples.size(); ++i) {
     if (i >= 1200 && i < 1250) continue;
     est.process(sc.samples[i]);
-    if (i >= 1250 + 500) worst_late = std::max(worst_late, test::angleBetween(est.output().q_nb, magneticTruth(sc.truth[i].q_nb)));
+    if (i >= 1250 + 500)
+      worst_late = std::max(worst_late, test::angleBetween(est.output().q_nb, magneticTruth(sc.truth[i].q_nb)));
   }
   EXPECT_EQ(est.counters().samples.gaps, 1u);
   EXPECT_LT(worst_late, 2.0 * kRadPerDeg) << "worst error from 5 s after the gap to the end";
@@ -304,12 +305,9 @@ INSTANTIATE_TEST_SUITE_P(Estimator, SingleCorruptedSample,
                          ::testing::Values(Corrupted::kAccel, Corrupted::kGyro, Corrupted::kMag),
                          [](const ::testing::TestParamInfo<Corrupted>& info) {
                            switch (info.param) {
-                             case Corrupted::kAccel:
-                               return std::string("HugeAccelerometer");
-                             case Corrupted::kGyro:
-                               return std::string("HugeGyroscope");
-                             case Corrupted::kMag:
-                               return std::string("HugeMagnetometer");
+                             case Corrupted::kAccel: return std::string("HugeAccelerometer");
+                             case Corrupted::kGyro: return std::string("HugeGyroscope");
+                             case Corrupted::kMag: return std::string("HugeMagnetometer");
                            }
                            return std::string("Unknown");
                          });
@@ -335,7 +333,7 @@ TEST(Estimator, GapKeepsTheAttitudeAndPublishesTheNewTime) {
   for (std::size_t i = 0; i < 100; ++i) est.process(sc.samples[i]);
   const Quat before = est.output().q_nb;
   ImuSample later = sc.samples[199];
-  later.t_ns += 10'000'000'000;  // 10 s later
+  later.t_ns += 10'000'000'000;            // 10 s later
   later.gyro_rad_s = Vec3(3.0, 0.0, 0.0);  // not integrated across the gap
   EXPECT_EQ(est.process(later), SampleVerdict::kGap);
   EXPECT_EQ(est.output().t_ns, later.t_ns);
@@ -382,8 +380,16 @@ TEST(Estimator, VerticalFieldIsCountedAndIgnored) {
 
 TEST(Estimator, RandomGarbageNeverMakesTheOutputNonFinite) {
   Random rng(68);
-  const double specials[] = {0.0, -0.0, 1e300, -1e300, 1e20, -1e-300, kNaN, std::numeric_limits<double>::infinity(),
-                             std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min()};
+  const double specials[] = {0.0,
+                             -0.0,
+                             1e300,
+                             -1e300,
+                             1e20,
+                             -1e-300,
+                             kNaN,
+                             std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::denorm_min()};
   auto value = [&]() {
     const int kind = static_cast<int>(rng.uniform(0.0, 4.0));
     if (kind == 0) return specials[static_cast<std::size_t>(rng.uniform(0.0, 10.0))];

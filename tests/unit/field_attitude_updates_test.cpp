@@ -116,7 +116,9 @@ TEST(AttitudeEkfUpdate, NothingIsUpdatedWhileTheCovarianceIsStillGeneral) {
   EXPECT_EQ(ekf.state(), Vec4(1.0, 0.0, 0.0, 0.0));
 }
 
-MagneticAttitudeUpdateParams mauParams() { return {.noise_uT = 2.0, .interval_s = 1.0, .verify_max_rad = 0.1, .max_nis = 16.27}; }
+MagneticAttitudeUpdateParams mauParams() {
+  return {.noise_uT = 2.0, .interval_s = 1.0, .verify_max_rad = 0.1, .max_nis = 16.27};
+}
 
 TEST(MagneticAttitudeUpdate, TheWmmFieldCorrectsTheTiltOncePerInterval) {
   const Quat truth = attitude(-20.0, 15.0, 120.0);

@@ -128,8 +128,8 @@ TEST(GyroBiasEstimator, APersonSettingOffAsABlockEndsDoesNotTeachItTheirAccelera
   // grows slowly enough (2.5 m/s³) for every steady test, and tilts the apparent gravity,
   // which the one block (0.5-2.0 s) takes for a turn about east (the field, which would
   // disagree, is not there: flagged as disturbed while its tests settle, as in the simulated
-  // run below); from 2.05 s they run (the phone swings). The motion is found a little after the block has counted, and the block is
-  // then cut back to what lay a confirmation window (0.5 s) before: its still part (simulated
+  // run below); from 2.05 s they run (the phone swings). The motion is found a little after the block has counted, and
+  // the block is then cut back to what lay a confirmation window (0.5 s) before: its still part (simulated
   // phone-running-circles, consumer, seed 6: 15 mrad/s of bias learned wrong before).
   const EstimatorParams p;
   GyroBiasEstimator est(p);
@@ -348,7 +348,8 @@ TEST(GyroBiasEstimator, TheTurnsOfASensorThatKeepsTurningAreNotTakenForBias) {
   EXPECT_EQ(est.bias(), Vec3::Zero());
   // The same turns on a sensor holding its attitude do move it.
   GyroBiasEstimator steady(p);
-  for (int i = 0; i < 6000; ++i) steady.addTiltCorrection(Eigen::Vector2d(-0.02 * kDt, 0.0), Quat::Identity(), kDt, true);
+  for (int i = 0; i < 6000; ++i)
+    steady.addTiltCorrection(Eigen::Vector2d(-0.02 * kDt, 0.0), Quat::Identity(), kDt, true);
   EXPECT_GT(steady.bias().x(), 0.01);
 }
 
@@ -396,7 +397,7 @@ TEST(GyroBiasEstimator, TheFirstTurnsDoNotSetTheBiasFasterThanTheTiltAnswers) {
               unbounded_after_2s, largest, unbounded_largest, beta);
   EXPECT_LT(after_2s, 0.5 * unbounded_after_2s);
   EXPECT_LT(largest, 1.08 * beta);  // damping ratio 1/√2: about 4 % over
-  EXPECT_GT(largest, 0.5 * beta);  // it still learns
+  EXPECT_GT(largest, 0.5 * beta);   // it still learns
 }
 
 TEST(GyroBiasEstimator, StaysWithinTheClamp) {
@@ -417,7 +418,7 @@ TEST(HeadingCorrectionLog, UndoingTheOlderSumUndoesTheCorrectionsSinceItRestarte
   EXPECT_NEAR(log.oldestAgeS(), 8.0, 1e-9);
   EXPECT_NEAR(log.oldestSumRad(), 0.3, 1e-9);
   for (int i = 0; i < 300; ++i) log.advance(0.01);  // at 10 s the older one restarts
-  EXPECT_NEAR(log.oldestAgeS(), 6.0, 1e-6);           // the other, restarted at 0 s
+  EXPECT_NEAR(log.oldestAgeS(), 6.0, 1e-6);         // the other, restarted at 0 s
   EXPECT_NEAR(log.oldestSumRad(), 0.3, 1e-9);
 }
 

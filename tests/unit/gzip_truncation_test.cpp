@@ -8,10 +8,10 @@
 #include <random>
 #include <string>
 
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/imu_csv_reader.hpp"
 #include "headingd/files/input_file.hpp"
-#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "temp_csv_files.hpp"
 
@@ -67,8 +67,9 @@ TEST_F(GzipFiles, ACutStreamIsAnErrorNamingTheFileForEveryReader) {
   // Cut in the compressed data, in the 8-byte trailer (CRC-32, length), and in the header.
   for (const long bytes : {size / 3, size - 1, size - 8, 10L}) {
     const std::string cut = cutCopy(whole, "cut-" + std::to_string(bytes) + ".csv.gz", bytes);
-    for (const std::string& m : {errorOf([&] { readImuCsv(cut); }), errorOf([&] { readMaybeGzipFile(cut, kWholeLogLimit); }),
-                                 errorOf([&] { readNumericCsv(cut, {"t"}); })}) {
+    for (const std::string& m :
+         {errorOf([&] { readImuCsv(cut); }), errorOf([&] { readMaybeGzipFile(cut, kWholeLogLimit); }),
+          errorOf([&] { readNumericCsv(cut, {"t"}); })}) {
       EXPECT_NE(m.find(cut + ": truncated gzip file"), std::string::npos) << bytes << ": " << m;
     }
   }
@@ -96,7 +97,8 @@ TEST_F(GzipFiles, ALogCutShortKeepsWhatWasReadAndSaysTheEndIsMissing) {
   const MaybeCutText all = readMaybeGzipLog(whole, kWholeLogLimit);
   EXPECT_FALSE(all.end_missing);
   EXPECT_EQ(all.text, text);
-  const MaybeCutText part = readMaybeGzipLog(cutCopy(whole, "cut.gz", static_cast<long>(std::filesystem::file_size(whole)) / 2), kWholeLogLimit);
+  const MaybeCutText part = readMaybeGzipLog(
+      cutCopy(whole, "cut.gz", static_cast<long>(std::filesystem::file_size(whole)) / 2), kWholeLogLimit);
   EXPECT_TRUE(part.end_missing);
   EXPECT_GT(part.text.size(), text.size() / 4);
   EXPECT_LT(part.text.size(), text.size());
@@ -112,8 +114,9 @@ TEST_F(GzipFiles, AFailedCrcOrLengthCheckIsACorruptFile) {
   const std::string bad_crc = flippedCopy(whole, "crc.csv.gz", -8);
   const std::string bad_length = flippedCopy(whole, "length.csv.gz", -2);
   for (const std::string& path : {bad_crc, bad_length}) {
-    for (const std::string& m : {errorOf([&] { readImuCsv(path); }), errorOf([&] { readMaybeGzipFile(path, kWholeLogLimit); }),
-                                 errorOf([&] { readMaybeGzipLog(path, kWholeLogLimit); })}) {
+    for (const std::string& m :
+         {errorOf([&] { readImuCsv(path); }), errorOf([&] { readMaybeGzipFile(path, kWholeLogLimit); }),
+          errorOf([&] { readMaybeGzipLog(path, kWholeLogLimit); })}) {
       EXPECT_NE(m.find(path + ": corrupt gzip file: incorrect "), std::string::npos) << m;
     }
   }
@@ -122,8 +125,8 @@ TEST_F(GzipFiles, AFailedCrcOrLengthCheckIsACorruptFile) {
 TEST_F(GzipFiles, ImuTimesBeyondInt64NanosecondsAreAnError) {
   // 9.3e9 s does not fit int64 ns: llround gave INT64_MIN for every row, all "duplicates".
   for (const char* t : {"9300000000", "-9300000000", "1e300"}) {
-    const std::string path = writePlain("far.csv", std::string("t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.8\n") +
-                                                       t + ",0,0,0,0,0,9.8\n");
+    const std::string path = writePlain(
+        "far.csv", std::string("t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.8\n") + t + ",0,0,0,0,0,9.8\n");
     const std::string m = errorOf([&] { readImuCsv(path); });
     EXPECT_NE(m.find(path + ":3: column 't': time "), std::string::npos) << t << ": " << m;
     EXPECT_NE(m.find("beyond ±9e9 s"), std::string::npos) << m;

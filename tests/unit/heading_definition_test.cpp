@@ -61,8 +61,8 @@ TEST(HeadingDefinition, AnyHeadAxisIsEq311WithXTurnedOntoIt) {
   for (int i = 0; i < 200; ++i) {
     const Quat q = rng.unitQuat();
     if ((q * kDocumentedHeadAxis).head<2>().norm() > 0.05) {
-      EXPECT_LT(test::angleDifference(headingOfAxis(q, kDocumentedHeadAxis), headingOf(q * Quat(h, 0.0, h, 0.0))),
-                1e-9) << i;
+      EXPECT_LT(test::angleDifference(headingOfAxis(q, kDocumentedHeadAxis), headingOf(q * Quat(h, 0.0, h, 0.0))), 1e-9)
+          << i;
     }
     const Vec3 a = rng.unitQuat() * Vec3::UnitX();
     const Quat q_xa = Quat::FromTwoVectors(Vec3::UnitX(), a);

@@ -11,8 +11,8 @@
 #include "headingd/core/angles.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/files/input_file.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/files/input_file.hpp"
 
 namespace headingd::core {
 namespace {
@@ -20,7 +20,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 WorldMagneticModel wmm2025() {
-  return WorldMagneticModel(parseWmmCoefficients(files::readMaybeGzipFile(HEADINGD_WMM_COF, files::kWmmFileLimit), HEADINGD_WMM_COF));
+  return WorldMagneticModel(
+      parseWmmCoefficients(files::readMaybeGzipFile(HEADINGD_WMM_COF, files::kWmmFileLimit), HEADINGD_WMM_COF));
 }
 
 // A second of a level, still IMU at 100 Hz in a field pointing north and down.
@@ -141,7 +142,7 @@ TEST(HeadingPipelineGps, StampsAtTheEndsOfTheRangeDoNotOverflow) {
   constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
   pipeline.processGps(fixAt(kMax));
   pipeline.processGps(fixAt(kMin));  // interval since kMax; walking since kMin
-  feedStill(pipeline, t);           // each sample: time since the walking epoch at kMin
+  feedStill(pipeline, t);            // each sample: time since the walking epoch at kMin
   pipeline.processGps(fixAt(kMax));  // interval since kMin
   expectFiniteOutput(pipeline);
   EXPECT_EQ(pipeline.gpsValuesIgnored(), 0u);

@@ -29,9 +29,9 @@ struct HeadingErrors {
 };
 
 struct Motion {
-  std::function<Quat(double t)> attitude;  // q_nb at time t
-  Vec3 rate_ned_rad_s = Vec3::Zero();       // its constant rate about NED (0 between turns)
-  std::function<Vec3(double t)> rate_at;    // or a rate that changes (NED), when given
+  std::function<Quat(double t)> attitude;          // q_nb at time t
+  Vec3 rate_ned_rad_s = Vec3::Zero();              // its constant rate about NED (0 between turns)
+  std::function<Vec3(double t)> rate_at;           // or a rate that changes (NED), when given
   std::function<Vec3(double t)> acceleration_ned;  // m/s², when given
 };
 
@@ -156,8 +156,10 @@ TEST(HeadingRateError, ABuildingsFieldThatTheTestsFlagPartOfTheTimeIsNotLearnedA
   EstimatorParams ungated = defaults;
   ungated.mag_rate_error_max_reference_age_s = 0.0;
   for (std::uint32_t seed = 1; seed <= 3; ++seed) {
-    const HeadingErrors gated = runWithBias(walkingOnAHeading(1.0), Vec3::Zero(), defaults, seed, 600.0, false, building);
-    const HeadingErrors eager = runWithBias(walkingOnAHeading(1.0), Vec3::Zero(), ungated, seed, 600.0, false, building);
+    const HeadingErrors gated =
+        runWithBias(walkingOnAHeading(1.0), Vec3::Zero(), defaults, seed, 600.0, false, building);
+    const HeadingErrors eager =
+        runWithBias(walkingOnAHeading(1.0), Vec3::Zero(), ungated, seed, 600.0, false, building);
     std::printf("seed %u: learned rate %.2f mrad/s, %.2f mrad/s from any field that looks clean\n", seed,
                 1e3 * std::abs(gated.vertical_rate_correction), 1e3 * std::abs(eager.vertical_rate_correction));
     // What it has is what the noise taught it in the clean minute outdoors.
@@ -194,10 +196,10 @@ TEST(HeadingRateError, AFieldErrorThatChangesWithTheHeadingIsNotLearnedAsARateEr
   EstimatorParams unsettled = defaults;
   unsettled.mag_rate_error_settle_s = 0.0;
   for (std::uint32_t seed = 1; seed <= 3; ++seed) {
-    const HeadingErrors settled = runWithBias(legsOfAWalk(), Vec3::Zero(), defaults, seed, 630.0, true,
-                                              residual_hard_iron);
-    const HeadingErrors eager = runWithBias(legsOfAWalk(), Vec3::Zero(), unsettled, seed, 630.0, true,
-                                            residual_hard_iron);
+    const HeadingErrors settled =
+        runWithBias(legsOfAWalk(), Vec3::Zero(), defaults, seed, 630.0, true, residual_hard_iron);
+    const HeadingErrors eager =
+        runWithBias(legsOfAWalk(), Vec3::Zero(), unsettled, seed, 630.0, true, residual_hard_iron);
     std::printf("seed %u: learned rate %.2f mrad/s settled, %.2f mrad/s without the steady heading\n", seed,
                 1e3 * std::abs(settled.vertical_rate_correction), 1e3 * std::abs(eager.vertical_rate_correction));
     EXPECT_LT(std::abs(settled.vertical_rate_correction), 0.5e-3) << "seed " << seed;

@@ -46,8 +46,8 @@ class MonteCarlo {
   // when the class is told so (field_turn_rad); else it does with time.
   void step(HeadingUncertainty& model, const Step& s, double turn_rad = 0.0) {
     model.predict(kDt, rate_sigma_ * rate_sigma_, turn_rad);
-    const double phi = p_.field_turn_rad > 0.0 ? std::exp(-turn_rad / p_.field_turn_rad)
-                                               : std::exp(-kDt / p_.field_correlation_s);
+    const double phi =
+        p_.field_turn_rad > 0.0 ? std::exp(-turn_rad / p_.field_turn_rad) : std::exp(-kDt / p_.field_correlation_s);
     const double w = p_.field_sigma_rad * std::sqrt(1.0 - phi * phi);
     for (Draw& d : draws_) {
       d.e += d.b * kDt;

@@ -89,13 +89,30 @@ TEST(EstimatorCounters, ForEachCounterListsEveryCounterOnce) {
   EstimatorCounters c;
   std::uint64_t v = 1;
   // Distinct values, so that each field shows up under exactly one name.
-  for (std::uint64_t* f : {&c.samples.accepted, &c.samples.gaps, &c.samples.clock_jumps, &c.samples.duplicate_time,
-                           &c.samples.backwards_time, &c.samples.non_finite, &c.samples.non_finite_mag,
-                           &c.samples.out_of_range, &c.samples.out_of_range_mag, &c.bias_still_blocks,
-                           &c.mag_no_heading, &c.mag_disturbed, &c.mag_heading_restores, &c.state_recoveries,
-                           &c.accel_clipped, &c.qsf_mag_periods, &c.qsf_mag_ms, &c.qsf_accel_periods,
-                           &c.qsf_accel_ms, &c.qsf_mag_updates, &c.qsf_mag_updates_rejected, &c.mau_updates,
-                           &c.mau_updates_rejected, &c.mau_updates_unverified}) {
+  for (std::uint64_t* f : {&c.samples.accepted,
+                           &c.samples.gaps,
+                           &c.samples.clock_jumps,
+                           &c.samples.duplicate_time,
+                           &c.samples.backwards_time,
+                           &c.samples.non_finite,
+                           &c.samples.non_finite_mag,
+                           &c.samples.out_of_range,
+                           &c.samples.out_of_range_mag,
+                           &c.bias_still_blocks,
+                           &c.mag_no_heading,
+                           &c.mag_disturbed,
+                           &c.mag_heading_restores,
+                           &c.state_recoveries,
+                           &c.accel_clipped,
+                           &c.qsf_mag_periods,
+                           &c.qsf_mag_ms,
+                           &c.qsf_accel_periods,
+                           &c.qsf_accel_ms,
+                           &c.qsf_mag_updates,
+                           &c.qsf_mag_updates_rejected,
+                           &c.mau_updates,
+                           &c.mau_updates_rejected,
+                           &c.mau_updates_unverified}) {
     *f = v++;
   }
   std::vector<std::pair<std::string, std::uint64_t>> list;

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <string>
 
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/input_file.hpp"
 #include "headingd/files/line_reader.hpp"
-#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/output_file.hpp"
 #include "temp_csv_files.hpp"
 
@@ -157,10 +157,14 @@ TEST_F(OutputFiles, AnOutputThatIsAnInputIsRefusedAlsoThroughLinks) {
   std::filesystem::create_symlink(input, symlink);
   std::filesystem::create_hard_link(input, hardlink);
   for (const std::string& out : {input, symlink, hardlink}) {
-    EXPECT_EQ(messageOf([&] { refuseOutputOverInputs({"--out", out}, {{"--config", ""}, {"--imu-csv", input}}); }),
+    EXPECT_EQ(messageOf([&] {
+                refuseOutputOverInputs({"--out", out}, {{"--config", ""}, {"--imu-csv", input}});
+              }),
               "--out '" + out + "' is the same file as --imu-csv '" + input + "': refusing to overwrite an input");
   }
-  EXPECT_EQ(messageOf([&] { refuseOutputOverInputs({"--out", (dir_ / "new.csv").string()}, {{"--imu-csv", input}}); }),
+  EXPECT_EQ(messageOf([&] {
+              refuseOutputOverInputs({"--out", (dir_ / "new.csv").string()}, {{"--imu-csv", input}});
+            }),
             "");
 }
 

@@ -41,8 +41,8 @@ TEST(Jacobian, RotateEarthToBodyMatchesNumericalDerivativeAtUnitQ) {
     const Mat34 analytic = rotateEarthToBodyJacobian(q, v);
     const Mat34 numeric = numericJacobian<3>(f, q);
     EXPECT_LT(relativeError(analytic, numeric), 1e-6) << "sample " << i << "\nanalytic\n"
-                                                     << analytic << "\nnumeric\n"
-                                                     << numeric;
+                                                      << analytic << "\nnumeric\n"
+                                                      << numeric;
   }
 }
 

@@ -1,7 +1,7 @@
 // MagCalibrationFit and CalibratedImuStream: a magnetometer calibration is used while it
 // explains the readings and set aside while the raw readings fit better.
-#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/core/mag_calibration_fit.hpp"
+#include "headingd/core/calibrated_imu_stream.hpp"
 
 #include <gtest/gtest.h>
 

@@ -341,7 +341,7 @@ TEST(MagDisturbance, WithoutAPositionALastingChangeIsDisturbedUntilItHasBeenHomo
   EXPECT_LT(disturbedFor(relative, 74.0, 1.15, 10'000), 700);
   int cabin = 0;
   for (int i = 0; i < 1500; ++i) cabin += disturbed(learning.update(fieldOf(74.0), 1.15, 0.01)) ? 1 : 0;
-  EXPECT_EQ(cabin, 1500);  // 15 s in the cabin: disturbed throughout
+  EXPECT_EQ(cabin, 1500);                                      // 15 s in the cabin: disturbed throughout
   EXPECT_LT(disturbedFor(learning, 49.0, 1.15, 10'000), 700);  // out again: the learned field
   // Staying in a different field: learned after 20 s of it being homogeneous.
   const int lasting = disturbedFor(learning, 60.0, 1.15, 10'000);

@@ -47,8 +47,8 @@ void expectJacobianMatches(const NavigationState& x,
   const auto analytic = linearise(x).jacobian;
   const auto numerical = numericalJacobian<N>(x, linearise);
   EXPECT_LT((analytic - numerical).cwiseAbs().maxCoeff(), 1e-6 * scale) << "analytic\n"
-                                                                         << analytic << "\nnumerical\n"
-                                                                         << numerical;
+                                                                        << analytic << "\nnumerical\n"
+                                                                        << numerical;
 }
 
 TEST(MeasurementModels, ReferenceVectorJacobianMatchesNumerical) {
@@ -57,10 +57,12 @@ TEST(MeasurementModels, ReferenceVectorJacobianMatchesNumerical) {
     const NavigationState x = randomState(rng);
     const ReferenceVectorModel gravity{Vec3(0.0, 0.0, -9.81), 0.05, /*with_accel_bias=*/true};
     const Vec3 accel = rng.gaussian(10.0);
-    expectJacobianMatches<3>(x, [&](const NavigationState& s) { return gravity.linearise(s, accel); }, 10.0);
+    expectJacobianMatches<3>(
+        x, [&](const NavigationState& s) { return gravity.linearise(s, accel); }, 10.0);
     const ReferenceVectorModel field{Vec3(18.0, -2.0, 45.0), 0.5};
     const Vec3 mag = rng.gaussian(50.0);
-    expectJacobianMatches<3>(x, [&](const NavigationState& s) { return field.linearise(s, mag); }, 50.0);
+    expectJacobianMatches<3>(
+        x, [&](const NavigationState& s) { return field.linearise(s, mag); }, 50.0);
   }
 }
 
@@ -121,7 +123,8 @@ TEST(MeasurementModels, ZeroRateObservesTheGyroBiasAlone) {
   const NavigationState x = randomState(rng);
   const ZeroRateModel rest{0.003};
   const Vec3 gyro = x.gyro_bias_rad_s + Vec3(0.001, -0.002, 0.0005);
-  expectJacobianMatches<3>(x, [&](const NavigationState& s) { return rest.linearise(s, gyro); }, 1.0);
+  expectJacobianMatches<3>(
+      x, [&](const NavigationState& s) { return rest.linearise(s, gyro); }, 1.0);
   const auto l = rest.linearise(x, gyro);
   EXPECT_LT((l.residual - Vec3(0.001, -0.002, 0.0005)).norm(), 1e-15);
   EXPECT_EQ((l.jacobian.block<3, 3>(0, error_state::kAttitude).norm()), 0.0);
@@ -137,7 +140,8 @@ TEST(MeasurementModels, MagneticHeadingJacobianMatchesNumerical) {
     const Vec3 field_ned = 50.0 * Vec3(std::cos(dip), 0.0, std::sin(dip));
     const Quat seen = headingRotation(rng.uniform(-60.0, 60.0) * kRadPerDeg) * x.q_nb;
     const Vec3 field_sensor = seen.conjugate() * field_ned;
-    expectJacobianMatches<1>(x, [&](const NavigationState& s) { return heading.linearise(s, field_sensor); }, 1.0);
+    expectJacobianMatches<1>(
+        x, [&](const NavigationState& s) { return heading.linearise(s, field_sensor); }, 1.0);
   }
 }
 

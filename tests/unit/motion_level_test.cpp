@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "headingd/core/accel_disturbance.hpp"
-#include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/estimator_params.hpp"
+#include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/low_pass.hpp"
 #include "test_support.hpp"
 

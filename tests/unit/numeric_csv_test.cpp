@@ -3,12 +3,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <string>
 
-#include "headingd/files/imu_csv.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/files/imu_csv.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "temp_csv_files.hpp"
 
@@ -156,7 +156,8 @@ TEST_F(CsvFiles, MissingRequiredColumnNamesFileLineAndColumn) {
 }
 
 TEST_F(CsvFiles, NonFiniteTimeIsAnError) {
-  const std::string path = writePlain("nant.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,-9.81\nnan,0,0,0,0,0,-9.81\n");
+  const std::string path =
+      writePlain("nant.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,-9.81\nnan,0,0,0,0,0,-9.81\n");
   expectNamesFileLineColumn(imuErrorOf(path), path, 3, "t");
 }
 

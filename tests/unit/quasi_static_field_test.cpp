@@ -17,8 +17,8 @@ namespace {
 using test::kRadPerDeg;
 
 const Vec3 kFieldNed(20.0, 2.0, 45.0);  // µT
-constexpr double kDt = 0.01;             // 100 Hz
-constexpr double kNoiseUT = 0.3;         // per axis and sample
+constexpr double kDt = 0.01;            // 100 Hz
+constexpr double kNoiseUT = 0.3;        // per axis and sample
 
 QuasiStaticFieldParams magParams() { return {1.0, 0.2, 1.0, 3.0, 1.5}; }
 
@@ -43,7 +43,8 @@ TurnedRun turnThrough(const std::function<Vec3(double)>& field_at, double second
     q_nb = (q_nb * increment).normalized();
     // The gyro as the estimator hands it over: bias taken off, its white noise left.
     frame.advance(gyroIncrement(rate + rng.gaussian(0.002), kDt));
-    const bool qs = run.detector.add(q_nb.inverse() * field_at(t) + rng.gaussian(kNoiseUT), frame.frameFromSensor(), kDt);
+    const bool qs =
+        run.detector.add(q_nb.inverse() * field_at(t) + rng.gaussian(kNoiseUT), frame.frameFromSensor(), kDt);
     if (t >= 1.5) {
       ++counted;
       quasi_static += qs ? 1 : 0;
@@ -79,16 +80,16 @@ TEST(QuasiStaticField, AStrengthThatDriftsEndsThePeriodAgainstItsReference) {
   // (0.15 µT of drift over 1 s), but within a few seconds the samples leave ξ_ref by more than
   // γ2 = 3 µT (eq. 34), and a new period starts from a new reference once a window passes.
   const TurnedRun run = turnThrough(
-      [](double t) { return Vec3(kFieldNed * (1.0 + (t > 10.0 ? 0.5 * (t - 10.0) / kFieldNed.norm() : 0.0))); },
-      30.0, 2);
+      [](double t) { return Vec3(kFieldNed * (1.0 + (t > 10.0 ? 0.5 * (t - 10.0) / kFieldNed.norm() : 0.0))); }, 30.0,
+      2);
   EXPECT_GT(run.detector.periods(), 2u);
   EXPECT_GT(run.quasi_static_share, 0.5);
 }
 
 TEST(QuasiStaticField, OneOutlierEndsThePeriodAndAWindowPassesBeforeTheNext) {
   const Vec3 outlier_ned = kFieldNed + Vec3(0.0, 0.0, 10.0);  // one sample 10 µT off
-  const TurnedRun run = turnThrough([&](double t) { return std::abs(t - 10.0) < kDt / 2 ? outlier_ned : kFieldNed; },
-                              20.0, 3);
+  const TurnedRun run =
+      turnThrough([&](double t) { return std::abs(t - 10.0) < kDt / 2 ? outlier_ned : kFieldNed; }, 20.0, 3);
   EXPECT_EQ(run.detector.periods(), 2u);
   // Quasi-static from 1 s to 10 s and from 11 s to 20 s (the outlier's window waited out).
   EXPECT_NEAR(run.detector.totalSeconds(), 18.0, 0.05);

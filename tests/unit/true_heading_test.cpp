@@ -16,7 +16,7 @@ namespace {
 
 TEST(NoiseFloor, IsTheQuietestSecondOfTheLastMinute) {
   NoiseFloor floor(1.0);
-  EXPECT_EQ(floor.threshold(3.0, 0.5, 10.0), 0.5);  // warm-up: the configured minimum
+  EXPECT_EQ(floor.threshold(3.0, 0.5, 10.0), 0.5);                         // warm-up: the configured minimum
   for (int i = 0; i < 1000; ++i) floor.update(i < 500 ? 0.2 : 1.0, 0.01);  // quiet, then noisy
   EXPECT_DOUBLE_EQ(floor.value(), 0.2);
   EXPECT_NEAR(floor.threshold(3.0, 0.1, 10.0), 0.6, 1e-12);

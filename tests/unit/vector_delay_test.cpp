@@ -147,14 +147,14 @@ TEST(VectorDelay, TheCandidateIsUsedOnlyWhereItMakesTheAngleToTheDownSteadier) {
   // The delayed field keeps its dip, the default one swings by ±0.1 of its sine.
   for (int k = 0; k < 500; ++k) {
     const double swing = 0.1 * std::sin(0.3 * k);
-    e.scoreDownAngle(down, Vec3(std::sqrt(1.0 - (0.8 + swing) * (0.8 + swing)), 0.0, 0.8 + swing), Vec3(0.6, 0.0, 0.8), true,
-               0.01);
+    e.scoreDownAngle(down, Vec3(std::sqrt(1.0 - (0.8 + swing) * (0.8 + swing)), 0.0, 0.8 + swing), Vec3(0.6, 0.0, 0.8),
+                     true, 0.01);
   }
   EXPECT_TRUE(e.useCandidate());
   for (int k = 0; k < 200'000; ++k) {  // the other way round, long enough to outweigh the first
     const double swing = 0.1 * std::sin(0.3 * k);
-    e.scoreDownAngle(down, Vec3(0.6, 0.0, 0.8), Vec3(std::sqrt(1.0 - (0.8 + swing) * (0.8 + swing)), 0.0, 0.8 + swing), true,
-               0.01);
+    e.scoreDownAngle(down, Vec3(0.6, 0.0, 0.8), Vec3(std::sqrt(1.0 - (0.8 + swing) * (0.8 + swing)), 0.0, 0.8 + swing),
+                     true, 0.01);
   }
   EXPECT_FALSE(e.useCandidate());
 }

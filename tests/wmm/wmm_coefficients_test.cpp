@@ -17,8 +17,9 @@ const std::string kDegree2 =
     "  2  0   -2556.6       0.0     -11.6       0.0\n"
     "  2  1    2951.1   -3133.6      -5.2     -27.7\n"
     "  2  2    1649.3    -815.1      -8.0     -12.1\n";
-const std::string kEnd = "999999999999999999999999999999999999999999999999\n"
-                         "999999999999999999999999999999999999999999999999\n";
+const std::string kEnd =
+    "999999999999999999999999999999999999999999999999\n"
+    "999999999999999999999999999999999999999999999999\n";
 
 // Expects a WmmParseError at `line` whose message contains `words`.
 void expectParseError(const std::string& text, std::size_t line, const std::string& words) {
@@ -86,7 +87,8 @@ TEST(WmmCoefficients, RejectsMalformedDocuments) {
 TEST(WmmCoefficients, SmallModelEvaluates) {
   // A pure axial dipole (g10 only): at the equator on the reference sphere the field is
   // horizontal and northward with |g10| (WMM report eq. for V with n = 1, m = 0).
-  const auto k = core::parseWmmCoefficients(kHeader + "  1  0  -30000.0  0.0  0.0  0.0\n  1  1  0.0  0.0  0.0  0.0\n" + kEnd);
+  const auto k =
+      core::parseWmmCoefficients(kHeader + "  1  0  -30000.0  0.0  0.0  0.0\n  1  1  0.0  0.0  0.0  0.0\n" + kEnd);
   const core::WorldMagneticModel model(k);
   // Geodetic and geocentric latitude agree at the equator; height puts r at 6371.2 km.
   const double height_km = 6371.2 - 6378.137;

@@ -98,9 +98,10 @@ TEST(Wmm2025, ReproducesEveryNoaaTestValue) {
   }
   RecordProperty("worst_nT", std::to_string(worst_nT));
   RecordProperty("worst_deg", std::to_string(worst_deg));
-  std::printf("WMM2025 test values: %zu rows, worst |difference| %.6f nT, %.6f deg against the CSV's angles "
-              "(rounded to 0.01), %.2e deg against angles from its X, Y, Z\n",
-              rows.size(), worst_nT, worst_deg, worst_unrounded_deg);
+  std::printf(
+      "WMM2025 test values: %zu rows, worst |difference| %.6f nT, %.6f deg against the CSV's angles "
+      "(rounded to 0.01), %.2e deg against angles from its X, Y, Z\n",
+      rows.size(), worst_nT, worst_deg, worst_unrounded_deg);
 }
 
 TEST(Wmm2025, ValidityIsEpochToEpochPlusFiveYears) {

@@ -24,8 +24,8 @@ std::string shellQuote(const std::string& s) {
 }
 
 RunResult runTool(const std::string& args) {
-  const auto err_path = std::filesystem::temp_directory_path() /
-                        ("headingd-wmm-test-" + std::to_string(::getpid()) + ".stderr");
+  const auto err_path =
+      std::filesystem::temp_directory_path() / ("headingd-wmm-test-" + std::to_string(::getpid()) + ".stderr");
   const std::string cmd = shellQuote(HEADINGD_WMM_TOOL) + " " + args + " 2>" + shellQuote(err_path.string());
   RunResult r;
   std::FILE* p = ::popen(cmd.c_str(), "r");
@@ -86,14 +86,12 @@ TEST(WmmTool, WarnsOutsideValidity) {
 }
 
 TEST(WmmTool, BadArgumentsExitWithTwo) {
-  for (const std::string args : {"--lat 91 --lon 93 --alt-km 65 --date 2025-01-01",
-                                 "--lat nan --lon 93 --alt-km 65 --date 2025-01-01",
-                                 "--lat north --lon 93 --alt-km 65 --date 2025-01-01",
-                                 "--lat 43 --lon 400 --alt-km 65 --date 2025-01-01",
-                                 "--lat 43 --lon 93 --alt-km 65 --date 2025-02-29",
-                                 "--lat 43 --lon 93 --alt-km 65 --date 2025/01/01",
-                                 "--lat 43 --lon 93 --alt-km 65 --date 2025-1-1",
-                                 "--lat 43 --lon 93 --alt-km 65", "--lat 43 --lon 93 --date 2025-01-01 --bogus"}) {
+  for (const std::string args :
+       {"--lat 91 --lon 93 --alt-km 65 --date 2025-01-01", "--lat nan --lon 93 --alt-km 65 --date 2025-01-01",
+        "--lat north --lon 93 --alt-km 65 --date 2025-01-01", "--lat 43 --lon 400 --alt-km 65 --date 2025-01-01",
+        "--lat 43 --lon 93 --alt-km 65 --date 2025-02-29", "--lat 43 --lon 93 --alt-km 65 --date 2025/01/01",
+        "--lat 43 --lon 93 --alt-km 65 --date 2025-1-1", "--lat 43 --lon 93 --alt-km 65",
+        "--lat 43 --lon 93 --date 2025-01-01 --bogus"}) {
     SCOPED_TRACE(args);
     const auto r = runTool(args);
     EXPECT_EQ(r.exit_code, 2) << r.out << r.err;

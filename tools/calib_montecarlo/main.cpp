@@ -108,8 +108,9 @@ double timeGradient(const calib_montecarlo::KsRun& run, double min_coverage, cal
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Kok & Schon (2016) section 8 Monte Carlo study: heading RMSE after magnetometer calibration with "
-               "the initial estimate (Algorithm 1 step 1) and with the maximum-likelihood estimate."};
+  CLI::App app{
+      "Kok & Schon (2016) section 8 Monte Carlo study: heading RMSE after magnetometer calibration with "
+      "the initial estimate (Algorithm 1 step 1) and with the maximum-likelihood estimate."};
   int runs = 150;
   std::string variant_name = "short";
   std::string out_path;
@@ -146,8 +147,10 @@ int main(int argc, char** argv) {
                  "known: the calibration is told the simulated dip, its sign and value (as headingd-calibrate is by "
                  "the WMM at --lat/--lon/--date); unknown: it is not (eq. 27's best minimum, one ML start)")
       ->check(CLI::IsMember({"known", "unknown"}));
-  app.footer(std::string("Exit codes: 0 done, 1 --require-ml-better not met, 2 bad arguments or --out cannot be written (it is "
-             "written at the end, through a temporary file renamed into place).") + "\n" + headingd::cli::kFileRules);
+  app.footer(std::string(
+                 "Exit codes: 0 done, 1 --require-ml-better not met, 2 bad arguments or --out cannot be written (it is "
+                 "written at the end, through a temporary file renamed into place).") +
+             "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
   g_place_known = place == "known";
   g_decimation = decimation;
@@ -180,10 +183,11 @@ int main(int argc, char** argv) {
       ml_seconds.push_back(seconds);
       if (e1 < e0) ++ml_better;
       if (!quiet) {
-        std::printf("run %3d seed %llu: heading RMSE initial %7.3f deg, ML %7.3f deg, %3d iterations, %d restarts, "
-                    "%d starts, %.2f s%s\n",
-                    i, static_cast<unsigned long long>(run_seed), e0, e1, r.iterations, r.restarts, r.starts, seconds,
-                    e1 < e0 ? "" : "  (ML not better)");
+        std::printf(
+            "run %3d seed %llu: heading RMSE initial %7.3f deg, ML %7.3f deg, %3d iterations, %d restarts, "
+            "%d starts, %.2f s%s\n",
+            i, static_cast<unsigned long long>(run_seed), e0, e1, r.iterations, r.restarts, r.starts, seconds,
+            e1 < e0 ? "" : "  (ML not better)");
         std::fflush(stdout);  // a long study shows its progress when its output goes to a file
       }
       if (write_csv) {
@@ -198,8 +202,12 @@ int main(int argc, char** argv) {
       }
     } catch (const calib::CalibrationError& e) {
       ++failures;
-      if (!quiet) std::printf("run %3d seed %llu: calibration failed: %s\n", i, static_cast<unsigned long long>(run_seed), e.what());
-      if (write_csv) csv << i << ',' << run_seed << ",nan,nan,0,nan,nan,0,nan,0,nan,nan,nan,nan,nan,nan,nan,nan,\"" << e.what() << "\"\n";
+      if (!quiet)
+        std::printf("run %3d seed %llu: calibration failed: %s\n", i, static_cast<unsigned long long>(run_seed),
+                    e.what());
+      if (write_csv)
+        csv << i << ',' << run_seed << ",nan,nan,0,nan,nan,0,nan,0,nan,nan,nan,nan,nan,nan,nan,nan,\"" << e.what()
+            << "\"\n";
     }
   }
 
@@ -213,10 +221,11 @@ int main(int argc, char** argv) {
   }
 
   const double fraction = static_cast<double>(ml_better) / static_cast<double>(runs);
-  std::printf("\nKok & Schon section 8 Monte Carlo, variant %s, %d runs (seeds %llu..%llu), Table 2 noise read as %s, x%.2f, "
-              "place %s, ML decimation %zu\n",
-              calib_montecarlo::variantName(variant), runs, static_cast<unsigned long long>(seed),
-              static_cast<unsigned long long>(seed + runs - 1), table_reading.c_str(), noise_factor, place.c_str(), decimation);
+  std::printf(
+      "\nKok & Schon section 8 Monte Carlo, variant %s, %d runs (seeds %llu..%llu), Table 2 noise read as %s, x%.2f, "
+      "place %s, ML decimation %zu\n",
+      calib_montecarlo::variantName(variant), runs, static_cast<unsigned long long>(seed),
+      static_cast<unsigned long long>(seed + runs - 1), table_reading.c_str(), noise_factor, place.c_str(), decimation);
   std::printf("  heading RMSE, initial estimate: median %.3f deg, 90th percentile %.3f deg, max %.3f deg\n",
               median(rmse_init), quantile(rmse_init, 0.9), quantile(rmse_init, 1.0));
   std::printf("  heading RMSE, ML estimate:      median %.3f deg, 90th percentile %.3f deg, max %.3f deg\n",
@@ -233,17 +242,19 @@ int main(int argc, char** argv) {
     const double g_ad = timeGradient(run, min_coverage, calib::MlGradient::kAutomatic, speed_repeats);
     const double g_fw = timeGradient(run, min_coverage, calib::MlGradient::kNumericForward, speed_repeats);
     const double g_ce = timeGradient(run, min_coverage, calib::MlGradient::kNumericCentral, speed_repeats);
-    std::printf("  one cost + gradient: reverse mode %.5f s, automatic (Jets) %.5f s (x%.2f), numeric forward %.5f s "
-                "(x%.2f), numeric central %.5f s (x%.2f)\n",
-                g_rev, g_ad, g_ad / g_rev, g_fw, g_fw / g_rev, g_ce, g_ce / g_rev);
+    std::printf(
+        "  one cost + gradient: reverse mode %.5f s, automatic (Jets) %.5f s (x%.2f), numeric forward %.5f s "
+        "(x%.2f), numeric central %.5f s (x%.2f)\n",
+        g_rev, g_ad, g_ad / g_rev, g_fw, g_fw / g_rev, g_ce, g_ce / g_rev);
     int it_rev = 0, it_ad = 0, it_fw = 0, it_ce = 0;
     const double m_rev = timeMl(run, min_coverage, calib::MlGradient::kAdjoint, speed_repeats, it_rev);
     const double m_ad = timeMl(run, min_coverage, calib::MlGradient::kAutomatic, speed_repeats, it_ad);
     const double m_fw = timeMl(run, min_coverage, calib::MlGradient::kNumericForward, speed_repeats, it_fw);
     const double m_ce = timeMl(run, min_coverage, calib::MlGradient::kNumericCentral, speed_repeats, it_ce);
-    std::printf("  whole ML step: reverse mode %.3f s (%d iterations), automatic (Jets) %.3f s (%d it., x%.2f), "
-                "numeric forward %.3f s (%d it., x%.2f), numeric central %.3f s (%d it., x%.2f)\n",
-                m_rev, it_rev, m_ad, it_ad, m_ad / m_rev, m_fw, it_fw, m_fw / m_rev, m_ce, it_ce, m_ce / m_rev);
+    std::printf(
+        "  whole ML step: reverse mode %.3f s (%d iterations), automatic (Jets) %.3f s (%d it., x%.2f), "
+        "numeric forward %.3f s (%d it., x%.2f), numeric central %.3f s (%d it., x%.2f)\n",
+        m_rev, it_rev, m_ad, it_ad, m_ad / m_rev, m_fw, it_fw, m_fw / m_rev, m_ce, it_ce, m_ce / m_rev);
   }
   if (require_fraction > 0.0 && fraction < require_fraction) {
     std::printf("FAIL: ML better in %.1f %% of runs, required %.1f %%\n", 100.0 * fraction, 100.0 * require_fraction);

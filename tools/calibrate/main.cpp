@@ -21,8 +21,8 @@
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/core/wmm.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/files/imu_csv.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/files/imu_csv.hpp"
 #include "headingd/files/output_file.hpp"
 
 namespace {
@@ -51,8 +51,9 @@ struct Arguments {
 // Parses the command line into `a`; returns the exit code when the tool must stop here
 // (help printed, or a bad argument), nothing when it goes on.
 std::optional<int> parseArguments(int argc, char** argv, Arguments& a) {
-  CLI::App app{"Calibrate the IMU from a recording and write the calibration TOML that headingd-replay --calib "
-               "applies (y_m = D m_b + o for the magnetometer, gyro bias/scale, accelerometer scale/bias)."};
+  CLI::App app{
+      "Calibrate the IMU from a recording and write the calibration TOML that headingd-replay --calib "
+      "applies (y_m = D m_b + o for the magnetometer, gyro bias/scale, accelerometer scale/bias)."};
   app.add_option("--imu-csv", a.imu_csv, "IMU CSV (BROAD columns; plain or gzip)")->required();
   app.add_option("--method", a.method, "thesis | ellipsoid | ml")->capture_default_str();
   app.add_option("--out", a.out, "calibration TOML to write")->required();
@@ -75,10 +76,13 @@ std::optional<int> parseArguments(int argc, char** argv, Arguments& a) {
                  "(ellipsoid and ml; it picks between the mirror solutions of the misalignment step)");
   app.add_option("--first-sample", a.first, "first row used (0-based)");
   app.add_option("--end-sample", a.end, "one past the last row used (default: all)");
-  app.footer(std::string("Without --field-uT or --lat/--lon/--date the field norm is taken from the data (D scaled to unit "
-             "determinant) and the file says so. Exit codes: 0 written, 1 file error, 2 bad arguments, 3 the data "
-             "cannot give a calibration (the message says why). An --out that is the same file as an input is refused "
-             "(2).") + "\n" + headingd::cli::kFileRules);
+  app.footer(
+      std::string(
+          "Without --field-uT or --lat/--lon/--date the field norm is taken from the data (D scaled to unit "
+          "determinant) and the file says so. Exit codes: 0 written, 1 file error, 2 bad arguments, 3 the data "
+          "cannot give a calibration (the message says why). An --out that is the same file as an input is refused "
+          "(2).") +
+      "\n" + headingd::cli::kFileRules);
   return cli::parseCommandLine(app, argc, argv);  // exit code 2 for every bad argument, as the footer says
 }
 
@@ -120,7 +124,8 @@ bool fieldFromArguments(const Arguments& a, calibrate::FieldNorm& field) {
       std::fprintf(stderr, "headingd-calibrate: --date: expected YYYY-MM-DD, got '%s'\n", a.date.c_str());
       return false;
     }
-    const core::WorldMagneticModel wmm(core::parseWmmCoefficients(files::readMaybeGzipFile(a.wmm_path, files::kWmmFileLimit), a.wmm_path));
+    const core::WorldMagneticModel wmm(
+        core::parseWmmCoefficients(files::readMaybeGzipFile(a.wmm_path, files::kWmmFileLimit), a.wmm_path));
     const auto e = wmm.field({*a.lat, *a.lon, 0.0}, core::decimalYear(y, m, d));
     field.norm_uT = e.f_nT / 1000.0;
     field.dip_rad = e.inclination_deg * kRadPerDeg;

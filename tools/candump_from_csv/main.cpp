@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/can/candump_writer.hpp"
+#include "headingd/cli/parse_command_line.hpp"
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/numeric_csv.hpp"
 #include "headingd/files/output_file.hpp"
@@ -28,9 +28,11 @@ int main(int argc, char** argv) {
   app.add_option("--mag-every", mag_every, "write magnetometer frames on every n-th epoch only")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
-  app.footer(std::string("Exit codes: 0 written, 1 an input cannot be read or is malformed, or --out cannot be written, 2 bad "
-             "arguments (also an --out that is an input). --out is written to a temporary file in its folder and "
-             "renamed into place when complete.") + "\n" + headingd::cli::kFileRules);
+  app.footer(
+      std::string("Exit codes: 0 written, 1 an input cannot be read or is malformed, or --out cannot be written, 2 bad "
+                  "arguments (also an --out that is an input). --out is written to a temporary file in its folder and "
+                  "renamed into place when complete.") +
+      "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {

@@ -24,17 +24,21 @@ std::string jsonNumber(double value) {
 
 int main(int argc, char** argv) {
   using namespace headingd;
-  CLI::App app{"Score estimates against a reference with BROAD's metric; prints one JSON object. With no row to "
-               "score (no reference row with moving = 1 and a finite quaternion) the RMSE figures are null and "
-               "\"reason\" says why."};
+  CLI::App app{
+      "Score estimates against a reference with BROAD's metric; prints one JSON object. With no row to "
+      "score (no reference row with moving = 1 and a finite quaternion) the RMSE figures are null and "
+      "\"reason\" says why."};
   std::string estimates_path, reference_path;
   app.add_option("--estimates", estimates_path, "headingd-replay output (t,qw,qx,qy,qz,...; q maps sensor to NED)")
       ->required();
   app.add_option("--reference", reference_path,
                  "reference CSV with ref_w,ref_x,ref_y,ref_z (sensor to ENU) and moving, e.g. a BROAD trial")
       ->required();
-  app.footer(std::string("Exit codes: 0 scored (or nothing to score: see \"reason\"), 1 a file cannot be read, is malformed, or "
-             "the two files' row counts differ, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
+  app.footer(
+      std::string(
+          "Exit codes: 0 scored (or nothing to score: see \"reason\"), 1 a file cannot be read, is malformed, or "
+          "the two files' row counts differ, 2 bad arguments.") +
+      "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {

@@ -4,13 +4,13 @@
 // '#' comment lines (gpsd's capture files carry them; they were never on the wire) are
 // stripped here, before the parser, and counted as "comment_lines"; --keep-comments feeds
 // them to the parser like any other bytes.
+#include <unistd.h>
+#include <cerrno>
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
-#include <cerrno>
 #include <cstring>
 #include <optional>
-#include <unistd.h>
 #include <string>
 #include <vector>
 
@@ -63,7 +63,8 @@ void printUpdate(const FixUpdate& u) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Parse an NMEA 0183 capture; print the fix after every decoded sentence and the counters, as JSON lines."};
+  CLI::App app{
+      "Parse an NMEA 0183 capture; print the fix after every decoded sentence and the counters, as JSON lines."};
   std::string path;
   bool keep_comments = false;
   std::size_t max_line = headingd::nmea::FramerConfig{}.max_line_length;
@@ -71,8 +72,10 @@ int main(int argc, char** argv) {
       ->required();
   app.add_flag("--keep-comments", keep_comments, "feed '#' lines to the parser instead of stripping them");
   app.add_option("--max-line", max_line, "longest line accepted, '$' through checksum")->check(CLI::Range(4, 4096));
-  app.footer(std::string("Exit codes: 0 the whole file was parsed (what the parser could not use is in the counters), 1 FILE "
-             "cannot be read (missing, a directory, a FIFO or a device), 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
+  app.footer(
+      std::string("Exit codes: 0 the whole file was parsed (what the parser could not use is in the counters), 1 FILE "
+                  "cannot be read (missing, a directory, a FIFO or a device), 2 bad arguments.") +
+      "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   // A regular file only: a directory, a FIFO or a device is refused (input_file.hpp); the
@@ -113,9 +116,8 @@ int main(int argc, char** argv) {
   parser.finish();
 
   std::printf("{\"counters\":{\"comment_lines\":%" PRIu64, comments.commentLines());
-  headingd::nmea::forEachCounter(parser.counters(), [](const char* name, std::uint64_t value) {
-    std::printf(",\"%s\":%" PRIu64, name, value);
-  });
+  headingd::nmea::forEachCounter(
+      parser.counters(), [](const char* name, std::uint64_t value) { std::printf(",\"%s\":%" PRIu64, name, value); });
   std::printf("}}\n");
   return 0;
 }

@@ -8,15 +8,15 @@
 #include <vector>
 
 #include "headingd/cli/parse_command_line.hpp"
+#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
-#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/core/params_toml.hpp"
 #include "headingd/core/two_filter_smoother.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
+#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/imu_csv_reader.hpp"
 #include "headingd/files/nmea_epochs.hpp"
-#include "headingd/files/gzip_file.hpp"
 #include "headingd/files/output_file.hpp"
 #include "headingd/replay/replay_csv_writer.hpp"
 #include "headingd/replay/replay_loop.hpp"
@@ -60,8 +60,9 @@ core::ConfiguredPlace placeOption(const std::vector<double>& values, const std::
   place.position.height_km = values.size() > 2 ? 1e-3 * values[2] : 0.0;
   if (!(std::abs(place.position.latitude_deg) <= 90.0) || !(std::abs(place.position.longitude_deg) <= 180.0) ||
       !(place.position.height_km >= -1.0 && place.position.height_km <= 850.0)) {
-    throw std::invalid_argument("--place: expected LAT in [-90, 90], LON in [-180, 180] degrees and HEIGHT_M in "
-                                "[-1000, 850000] m");
+    throw std::invalid_argument(
+        "--place: expected LAT in [-90, 90], LON in [-180, 180] degrees and HEIGHT_M in "
+        "[-1000, 850000] m");
   }
   if (!date.empty()) {
     int y = 0, m = 0, d = 0;
@@ -103,15 +104,18 @@ int main(int argc, char** argv) {
                  "with --recording: also write HEADING and ATTITUDE after every IMU sample and GPS epoch to this LCM "
                  "log (utime = the sample's time), to compare with an lcm-logger log of the live run");
   app.add_option("--config", config, "TOML file with an [estimator] table (config/estimator.toml lists the keys)");
-  app.add_option("--out", out, "output CSV: t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg (the 1-sigma of yaw_deg; 103.9 until the first field sample)");
+  app.add_option("--out", out,
+                 "output CSV: t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg (the 1-sigma of yaw_deg; "
+                 "103.9 until the first field sample)");
   std::string nmea_path, wmm_path = HEADINGD_WMM_DEFAULT_COF;
   double nmea_first_epoch_t = 0.0;
-  app.add_option("--nmea", nmea_path,
-                 "NMEA capture of the GPS beside the IMU; adds the columns heading_mag_deg,declination_deg,"
-                 "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed,heading_mag_sigma_deg,"
-                 "heading_true_sigma_deg (in place of heading_sigma_deg; inf while no declination is known). "
-                 "Alignment: the first NMEA epoch (first sentence with a UTC time) is at IMU time "
-                 "--nmea-first-epoch-t, later epochs at that plus their UTC difference");
+  app.add_option(
+      "--nmea", nmea_path,
+      "NMEA capture of the GPS beside the IMU; adds the columns heading_mag_deg,declination_deg,"
+      "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,mag_disturbed,heading_mag_sigma_deg,"
+      "heading_true_sigma_deg (in place of heading_sigma_deg; inf while no declination is known). "
+      "Alignment: the first NMEA epoch (first sentence with a UTC time) is at IMU time "
+      "--nmea-first-epoch-t, later epochs at that plus their UTC difference");
   app.add_option("--nmea-first-epoch-t", nmea_first_epoch_t, "IMU time [s] of the first NMEA epoch (default 0)")
       ->check(CLI::Range(-9e9, 9e9));
   std::string calib_path;
@@ -143,8 +147,11 @@ int main(int argc, char** argv) {
       "bytes per sample: 78 MB per hour at 100 Hz); not with --nmea or --recording. The counters are the forward "
       "filter's");
   smooth_option->excludes(recording_option);
-  app.footer(std::string("Exit codes: 0 replayed and written, 1 an input cannot be read or is malformed, or an output cannot be "
-             "written (the message names the file), 2 bad arguments (also an output that is an input).") + "\n" + headingd::cli::kFileRules);
+  app.footer(
+      std::string(
+          "Exit codes: 0 replayed and written, 1 an input cannot be read or is malformed, or an output cannot be "
+          "written (the message names the file), 2 bad arguments (also an output that is an input).") +
+      "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   std::optional<core::ConfiguredPlace> place;
@@ -160,7 +167,10 @@ int main(int argc, char** argv) {
       throw std::runtime_error("--smooth smooths the attitude alone: it does not take --nmea (true heading)");
     }
     refuseOverwritingInputs({{"--out", out}, {"--lcm-log", recording.lcm_log}},
-                            {{"--imu-csv", imu_csv}, {"--config", config}, {"--nmea", nmea_path}, {"--calib", calib_path},
+                            {{"--imu-csv", imu_csv},
+                             {"--config", config},
+                             {"--nmea", nmea_path},
+                             {"--calib", calib_path},
                              {"--wmm", wmm_path}},
                             recording.dir);
   } catch (const std::exception& e) {

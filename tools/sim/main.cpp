@@ -72,7 +72,8 @@ std::string scenarioList() {
 int main(int argc, char** argv) {
   CLI::App app{
       "Simulated body-worn IMU and GPS with ground truth. Writes into --out-dir:\n"
-      "  imu.csv    BROAD's columns t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y,mag_z,ref_w,ref_x,ref_y,ref_z,moving\n"
+      "  imu.csv    BROAD's columns "
+      "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y,mag_z,ref_w,ref_x,ref_y,ref_z,moving\n"
       "             (rad/s, m/s^2 specific force, uT, sensor axes). NOTE: ref_* is the TRUE attitude q_nb of the\n"
       "             SENSOR, mapping sensor axes to NED with geographic north (not BROAD's ENU/magnetic north).\n"
       "             moving = 1 while the person moves (walks, turns, gets up or down).\n"
@@ -82,7 +83,8 @@ int main(int argc, char** argv) {
       "             gyro_bias_x/y/z (the gyro's true constant + drifting bias in this row, sensor axes, rad/s).\n"
       "  gps_truth.csv, sensor_errors.toml   receiver output next to the truth; the drawn IMU errors.\n"
       "Time alignment: the first IMU row is t = 0, row k is t = k/rate. GPS epoch j describes t = j/gps_rate on the\n"
-      "same axis, and its sentences carry UTC = --date 12:00:00 + t. So t of an NMEA line = its UTC - (date 12:00:00).\n"
+      "same axis, and its sentences carry UTC = --date 12:00:00 + t. So t of an NMEA line = its UTC - (date "
+      "12:00:00).\n"
       "Same arguments and seed give the same bytes."};
   sim::SimConfig c;
   std::string date = "2026-06-01", out_dir, grade = "consumer", cof = HEADINGD_SIM_DEFAULT_COF;

@@ -95,7 +95,8 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
   out << "t,incl_err_deg,heading_err_deg,level,d_k,at_rest,bias_x,bias_y,bias_z,mag_disturbed,still_blocks,moving,"
          "roll_deg,pitch_deg,true_roll_deg,true_pitch_deg,mag_used,mag_restores,gravity_noise,heading_sigma_deg,"
          "mag_innovation_deg,mag_gain,rate_sigma_deg_s,heading_redefined,head_height,published_heading_err_deg,"
-         "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_sigma_ms,"
+         "yaw_err_deg,vertical_rate_correction_mrad_s,mag_lag_ms,accel_lag_ms,accel_delay_estimate_ms,accel_delay_"
+         "sigma_ms,"
          "tilt_sigma_deg,mag_norm_jump,mag_dip_jump,dip_deg,true_dip_deg,heading_prior_sigma_deg,mag_dip_deviation_deg,"
          "field_heading_error_deg,tilt_heading_error_deg,vertical_error_deg,shown_rate_error_mrad_s,"
          "shown_rate_error_sigma_mrad_s,true_rate_error_mrad_s,mag_quasi_static,qsf_mag_update,mau\n";
@@ -150,7 +151,8 @@ void writeTrace(const std::string& path, const study::Recording& r, const core::
     const core::Quat turn = o.q_nb * r.truth_nb[i].conjugate();
     const double vertical_error_rad = 2.0 * std::atan(turn.z() / turn.w());
     const core::Vec3 rate_error = r.samples[i].gyro_rad_s - o.gyro_bias_rad_s - study::referenceRate(r, i);
-    const double true_rate_error = (r.truth_nb[i] * rate_error).z() + o.vertical_rate_correction_rad_s;  // turned in, too
+    const double true_rate_error =
+        (r.truth_nb[i] * rate_error).z() + o.vertical_rate_correction_rad_s;  // turned in, too
     const double tilt_error_deg =
         through_truth.valid && through_estimate.valid
             ? wrapped_deg(through_estimate.innovation_rad - through_truth.innovation_rad + vertical_error_rad)
@@ -187,9 +189,9 @@ struct Row {
   // Share of heading errors within 2 stated sigmas: plain errors on simulations (the truth is
   // in the estimator's magnetic frame), after the fitted alignment on recordings.
   double heading_2sigma = 0.0;
-  std::vector<study::RunScore> anchors;  // one per --anchors filter, in findAnchors' order
-  study::ReferenceDelays delays;         // with --reference-delays
-  double learned_mag_lag_s = 0.0;        // the estimator's, median over the second half
+  std::vector<study::RunScore> anchors;        // one per --anchors filter, in findAnchors' order
+  study::ReferenceDelays delays;               // with --reference-delays
+  double learned_mag_lag_s = 0.0;              // the estimator's, median over the second half
   study::QuasiStaticScore mag_qsf, accel_qsf;  // with --qsf
   core::EstimatorCounters counters;            // at the end of the run
   double minutes = 0.0;                        // of samples
@@ -204,9 +206,10 @@ double medianOfSecondHalf(std::vector<double> v) {
 }
 
 void printReferenceDelays(const std::vector<Row>& rows) {
-  std::printf("\ndelays against the reference (ms; reference_delay.hpp): the field's that makes it steadiest in "
-              "the earth frame (its spread there, and at 0 ms, uT), the gyro's, and what headingd learned and applied "
-              "(mag_lag, median of the second half)\n");
+  std::printf(
+      "\ndelays against the reference (ms; reference_delay.hpp): the field's that makes it steadiest in "
+      "the earth frame (its spread there, and at 0 ms, uT), the gyro's, and what headingd learned and applied "
+      "(mag_lag, median of the second half)\n");
   std::printf("%-46s %7s | %6s %13s | %6s | %8s\n", "run", "Hz", "field", "spread (0 ms)", "gyro", "headingd");
   for (const Row& row : rows) {
     if (!row.delays.valid) {
@@ -221,8 +224,9 @@ void printReferenceDelays(const std::vector<Row>& rows) {
 
 // How often the updates from the field's direction fired (issue 29), where one is on.
 void printFieldUpdates(const std::vector<Row>& rows) {
-  std::printf("\nfield updates per minute (quasi_static_field_update.hpp, magnetic_attitude_update.hpp): QSF applied "
-              "/ rejected by the gate, MAU applied / rejected by the gate / not verified by the magnetic frame\n");
+  std::printf(
+      "\nfield updates per minute (quasi_static_field_update.hpp, magnetic_attitude_update.hpp): QSF applied "
+      "/ rejected by the gate, MAU applied / rejected by the gate / not verified by the magnetic frame\n");
   std::printf("%-46s %7s | %8s %8s | %8s %8s %8s\n", "run", "Hz", "qsf", "qsf.rej", "mau", "mau.rej", "mau.unv");
   for (const Row& row : rows) {
     const auto& c = row.counters;
@@ -234,17 +238,18 @@ void printFieldUpdates(const std::vector<Row>& rows) {
 }
 
 void printQuasiStatic(const std::vector<Row>& rows) {
-  std::printf("\nquasi-static periods (quasi_static_field.hpp; --qsf): share of the samples, periods, their mean "
-              "length (s), and the vector's distance from the period's start through the reference attitude, "
-              "median / 95th percentile (field uT, specific force m/s^2)\n");
+  std::printf(
+      "\nquasi-static periods (quasi_static_field.hpp; --qsf): share of the samples, periods, their mean "
+      "length (s), and the vector's distance from the period's start through the reference attitude, "
+      "median / 95th percentile (field uT, specific force m/s^2)\n");
   std::printf("%-46s %7s | %6s %5s %6s %6s %6s | %6s %5s %6s %6s %6s\n", "run", "Hz", "mag%", "per", "len", "med",
               "p95", "acc%", "per", "len", "med", "p95");
   for (const Row& row : rows) {
     const auto& m = row.mag_qsf;
     const auto& a = row.accel_qsf;
     std::printf("%-46s %7.1f | %6.1f %5zu %6.1f %6.2f %6.2f | %6.1f %5zu %6.1f %6.3f %6.3f\n", row.name.c_str(),
-                row.rate_hz, 100.0 * m.share, m.periods, m.mean_period_s, m.median_drift, m.p95_drift,
-                100.0 * a.share, a.periods, a.mean_period_s, a.median_drift, a.p95_drift);
+                row.rate_hz, 100.0 * m.share, m.periods, m.mean_period_s, m.median_drift, m.p95_drift, 100.0 * a.share,
+                a.periods, a.mean_period_s, a.median_drift, a.p95_drift);
   }
 }
 
@@ -347,9 +352,10 @@ int main(int argc, char** argv) {
   broad->add_option("--only", only, "trials whose name contains this");
   bool centred = false, reference_delays = false;
   std::vector<double> reference_field;
-  broad->add_option("--reference-field", reference_field,
-                    "the field where it was recorded, strength (uT) and dip (deg), given to the estimator as the "
-                    "daemon gives the WMM's with a GPS fix or a configured place (e.g. BROAD's lab: 42.5 69.5)")
+  broad
+      ->add_option("--reference-field", reference_field,
+                   "the field where it was recorded, strength (uT) and dip (deg), given to the estimator as the "
+                   "daemon gives the WMM's with a GPS fix or a configured place (e.g. BROAD's lab: 42.5 69.5)")
       ->expected(2);
   broad->add_flag("--reference-delays", reference_delays,
                   "also measure how late the magnetometer and the gyro are against the reference attitude, and "
@@ -363,7 +369,8 @@ int main(int argc, char** argv) {
   double settle_s = 5.0;
   simulate->add_option("--scenario", scenario, "headingd-sim scenario")->required();
   simulate->add_option("--seeds", seeds_text, "e.g. 1-20 or 1,5,9")->capture_default_str();
-  simulate->add_option("--grade", grade, "IMU grade: consumer, mems, uncalibrated, phone, ideal")->capture_default_str();
+  simulate->add_option("--grade", grade, "IMU grade: consumer, mems, uncalibrated, phone, ideal")
+      ->capture_default_str();
   simulate->add_option("--settle", settle_s, "seconds after the motion from which the recovery is scored")
       ->capture_default_str();
   simulate->add_option("--cof", cof, "WMM coefficients")->capture_default_str();
@@ -379,7 +386,9 @@ int main(int argc, char** argv) {
                      "give the estimator the WMM's field at the simulated place, as the daemon does once GPS has a "
                      "fix (enables the reference strength and dip tests, and MAU)");
   common(simulate);
-  app.footer(std::string("Exit codes: 0 done, 1 an input cannot be read or a trace cannot be written, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
+  app.footer(
+      std::string("Exit codes: 0 done, 1 an input cannot be read or a trace cannot be written, 2 bad arguments.") +
+      "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   try {
@@ -392,7 +401,7 @@ int main(int argc, char** argv) {
                   anchors_dir.c_str());
     }
     if (rates.empty()) rates.push_back(0.0);
-    std::vector<std::string> paths;  // BROAD trials, or
+    std::vector<std::string> paths;    // BROAD trials, or
     std::vector<std::uint64_t> seeds;  // simulator seeds
     if (*broad) {
       for (const auto& e : std::filesystem::directory_iterator(dir)) {
@@ -460,8 +469,7 @@ int main(int argc, char** argv) {
           sigmas[i] = std::sqrt(smoothed[i].covariance_ned(2, 2));
         }
       }
-      const double coverage =
-          study::headingCoverage(r, *simulate ? est : study::alignedEstimates(r, est), sigmas, 2.0);
+      const double coverage = study::headingCoverage(r, *simulate ? est : study::alignedEstimates(r, est), sigmas, 2.0);
       rows[job] = {
           r.name,
           r.rate_hz,

@@ -45,8 +45,7 @@ double parseDate(const std::string& text) {
   }
   if (!shape_ok) throw BadArgument("--date: expected YYYY-MM-DD, got '" + text + "'");
   try {
-    return core::decimalYear(std::stoi(text.substr(0, 4)), std::stoi(text.substr(5, 2)),
-                             std::stoi(text.substr(8, 2)));
+    return core::decimalYear(std::stoi(text.substr(0, 4)), std::stoi(text.substr(5, 2)), std::stoi(text.substr(8, 2)));
   } catch (const std::invalid_argument& e) {
     throw BadArgument("--date: " + text + " is not a calendar date (" + e.what() + ")");
   }
@@ -76,8 +75,9 @@ std::string jsonEscape(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"World Magnetic Model field at a geodetic position and date, as one JSON object:\n"
-               "X_nT (north), Y_nT (east), Z_nT (down), H_nT, F_nT, incl_deg, decl_deg."};
+  CLI::App app{
+      "World Magnetic Model field at a geodetic position and date, as one JSON object:\n"
+      "X_nT (north), Y_nT (east), Z_nT (down), H_nT, F_nT, incl_deg, decl_deg."};
   double lat_deg = 0.0, lon_deg = 0.0, height_km = 0.0;
   std::string date, cof = HEADINGD_WMM_DEFAULT_COF;
   app.add_option("--lat", lat_deg, "geodetic latitude in degrees, -90..90 (north positive)")->required();
@@ -85,8 +85,10 @@ int main(int argc, char** argv) {
   app.add_option("--alt-km", height_km, "height above the WGS-84 ellipsoid in km")->required();
   app.add_option("--date", date, "UTC date, YYYY-MM-DD")->required();
   app.add_option("--cof", cof, "WMM coefficient file in NOAA's COF layout")->capture_default_str();
-  app.footer(std::string("Exit codes: 0 done (a \"warning\" field flags a date or height outside the model's validity),\n"
-             "1 coefficient file unreadable or malformed, 2 bad arguments.") + "\n" + headingd::cli::kFileRules);
+  app.footer(
+      std::string("Exit codes: 0 done (a \"warning\" field flags a date or height outside the model's validity),\n"
+                  "1 coefficient file unreadable or malformed, 2 bad arguments.") +
+      "\n" + headingd::cli::kFileRules);
   if (const auto status = headingd::cli::parseCommandLine(app, argc, argv)) return *status;
 
   double decimal_year = 0.0;
@@ -131,10 +133,11 @@ int main(int argc, char** argv) {
   for (const auto& w : warnings) warning += (warning.empty() ? "" : "; ") + w;
   if (!warning.empty()) std::fprintf(stderr, "headingd-wmm: warning: %s\n", warning.c_str());
 
-  std::printf("{\"model\":\"%s\",\"decimal_year\":%.6f,\"X_nT\":%.6f,\"Y_nT\":%.6f,\"Z_nT\":%.6f,\"H_nT\":%.6f,"
-              "\"F_nT\":%.6f,\"incl_deg\":%.6f,\"decl_deg\":%.6f",
-              jsonEscape(model->modelName()).c_str(), decimal_year, f.x_nT, f.y_nT, f.z_nT, f.h_nT, f.f_nT,
-              f.inclination_deg, f.declination_deg);
+  std::printf(
+      "{\"model\":\"%s\",\"decimal_year\":%.6f,\"X_nT\":%.6f,\"Y_nT\":%.6f,\"Z_nT\":%.6f,\"H_nT\":%.6f,"
+      "\"F_nT\":%.6f,\"incl_deg\":%.6f,\"decl_deg\":%.6f",
+      jsonEscape(model->modelName()).c_str(), decimal_year, f.x_nT, f.y_nT, f.z_nT, f.h_nT, f.f_nT, f.inclination_deg,
+      f.declination_deg);
   if (!warning.empty()) std::printf(",\"warning\":\"%s\"", jsonEscape(warning).c_str());
   std::printf("}\n");
   return std::fflush(stdout) == 0 ? 0 : kExitFileError;

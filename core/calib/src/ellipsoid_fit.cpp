@@ -114,7 +114,8 @@ struct ConeAlgebraicResidual {
     const T a23 = l[1] * l[3] + l[2] * l[4];
     const T a33 = l[3] * l[3] + l[4] * l[4] + l[5] * l[5];
     const T trace = a11 + a22 + a33;
-    const T quad = (row_(0) * a11 + row_(1) * a22 + row_(2) * a33 + row_(3) * a12 + row_(4) * a13 + row_(5) * a23) / trace;
+    const T quad =
+        (row_(0) * a11 + row_(1) * a22 + row_(2) * a33 + row_(3) * a12 + row_(4) * a13 + row_(5) * a23) / trace;
     residual[0] = quad + row_(6) * bc[0] + row_(7) * bc[1] + row_(8) * bc[2] + row_(9) * bc[3];
     return true;
   }
@@ -133,8 +134,9 @@ Vec10 coneConstrainedFit(const std::vector<Vec10>& rows, const Vec10& start) {
   std::array<double, 4> bc{q.b.x(), q.b.y(), q.b.z(), q.c};
   ceres::Problem problem;
   for (const Vec10& row : rows) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ConeAlgebraicResidual, 1, 6, 4>(new ConeAlgebraicResidual(row)),
-                             nullptr, l.data(), bc.data());
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<ConeAlgebraicResidual, 1, 6, 4>(new ConeAlgebraicResidual(row)), nullptr,
+        l.data(), bc.data());
   }
   ceres::Solver::Options options;
   options.max_num_iterations = 200;
@@ -222,7 +224,8 @@ double sphereCoverage(std::span<const Vec3> directions) {
 
 EllipsoidFit fitEllipsoid(std::span<const Vec3> mag_uT, double field_norm_uT, const EllipsoidFitOptions& options) {
   if (!(field_norm_uT > 0.0) || !std::isfinite(field_norm_uT)) {
-    throw CalibrationError(format("ellipsoid fit: the field norm must be positive and finite (got %g uT)", field_norm_uT));
+    throw CalibrationError(
+        format("ellipsoid fit: the field norm must be positive and finite (got %g uT)", field_norm_uT));
   }
   const auto n = mag_uT.size();
   if (n < static_cast<std::size_t>(std::max(10, options.min_samples))) {
@@ -328,7 +331,8 @@ EllipsoidFit fitEllipsoid(std::span<const Vec3> mag_uT, double field_norm_uT, co
     if (problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &jacobian)) {
       Eigen::MatrixXd j = Eigen::MatrixXd::Zero(jacobian.num_rows, jacobian.num_cols);
       for (int r = 0; r < jacobian.num_rows; ++r) {
-        for (int k = jacobian.rows[static_cast<std::size_t>(r)]; k < jacobian.rows[static_cast<std::size_t>(r) + 1]; ++k) {
+        for (int k = jacobian.rows[static_cast<std::size_t>(r)]; k < jacobian.rows[static_cast<std::size_t>(r) + 1];
+             ++k) {
           j(r, jacobian.cols[static_cast<std::size_t>(k)]) = jacobian.values[static_cast<std::size_t>(k)];
         }
       }

@@ -54,8 +54,8 @@ StaticSegment summarise(std::span<const core::ImuSample> samples, std::size_t be
   return seg;
 }
 
-std::vector<StaticSegment> findStaticSegments(std::span<const core::ImuSample> samples,
-                                              const StaticDetectionOptions& o, double rate_hz) {
+std::vector<StaticSegment> findStaticSegments(std::span<const core::ImuSample> samples, const StaticDetectionOptions& o,
+                                              double rate_hz) {
   const std::size_t n = samples.size();
   if (n < 3) return {};
   if (!(rate_hz > 0.0)) rate_hz = sampleRateHz(samples);

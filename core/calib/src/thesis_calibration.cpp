@@ -87,9 +87,7 @@ GyroScaleResult gyroScaleFromTurns(std::span<const core::ImuSample> samples, std
     const StaticSegment& a = segments[k - 1];
     const StaticSegment& b = segments[k];
     // Same orientation before and after: gravity and field directions agree.
-    const auto angle = [](const Vec3& u, const Vec3& v) {
-      return std::atan2(u.cross(v).norm(), u.dot(v));
-    };
+    const auto angle = [](const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); };
     if (angle(a.accel_mean, b.accel_mean) > 3.0 * core::kRadPerDeg) continue;
     if (a.mag_mean.norm() > 0.0 && angle(a.mag_mean, b.mag_mean) > 5.0 * core::kRadPerDeg) continue;
     Vec3 integral = Vec3::Zero();

@@ -40,7 +40,8 @@ SignalRef parseSignalRef(const toml::node& node, const std::string& where_key) {
 std::array<SignalRef, 3> parseAxes(const toml::node& node, const std::string& where_key) {
   const toml::array* arr = node.as_array();
   if (arr == nullptr || arr->size() != 3) {
-    throw ConfigError(where_key + ": expected an array of 3 signals [x, y, z], e.g. [\"Msg.X\", \"Msg.Y\", \"-Msg.Z\"]");
+    throw ConfigError(where_key +
+                      ": expected an array of 3 signals [x, y, z], e.g. [\"Msg.X\", \"Msg.Y\", \"-Msg.Z\"]");
   }
   std::array<SignalRef, 3> axes;
   for (std::size_t i = 0; i < 3; ++i) axes[i] = parseSignalRef(*arr->get(i), where_key);
@@ -113,7 +114,8 @@ CanConfig parseCanTable(const toml::table& table, const std::string& source, con
   if (!c.key_lines.contains("gyro")) throw ConfigError(table_line + ": missing key 'gyro' ([x, y, z] signals)");
   if (!c.key_lines.contains("accel")) throw ConfigError(table_line + ": missing key 'accel' ([x, y, z] signals)");
   if (c.reconnect_max_s < c.reconnect_initial_s) {
-    r.fail("reconnect_max_s", "expected a value >= reconnect_initial_s (" + std::to_string(c.reconnect_initial_s) + ")");
+    r.fail("reconnect_max_s",
+           "expected a value >= reconnect_initial_s (" + std::to_string(c.reconnect_initial_s) + ")");
   }
   if (c.mag_unit_factor && !c.mag) r.fail("mag_unit_factor", "given without 'mag' signals");
   const std::filesystem::path dbc_path(dbc);

@@ -63,7 +63,8 @@ bool parseFrame(std::string_view f, CanFrame& frame, std::string* reason) {
   const std::string_view id_text = f.substr(0, hash);
   std::string_view data = f.substr(hash + 1);
   if (!data.empty() && data.front() == '#') return fail(reason, "a classic CAN frame (CAN FD '##' is not supported)");
-  if (id_text.size() != 3 && id_text.size() != 8) return fail(reason, "an id of 3 (standard) or 8 (extended) hex digits");
+  if (id_text.size() != 3 && id_text.size() != 8)
+    return fail(reason, "an id of 3 (standard) or 8 (extended) hex digits");
   std::uint32_t id = 0;
   for (char c : id_text) {
     const int v = hexValue(c);
@@ -109,8 +110,10 @@ bool parseFrame(std::string_view f, CanFrame& frame, std::string* reason) {
     const int v = hexValue(data[i]);
     if (v < 0) return fail(reason, "hex data bytes after '#'");
     if (n >= 2 * kClassicMaxLen) return fail(reason, "at most 8 data bytes");
-    if (n % 2 == 0) frame.data[n / 2] = static_cast<std::uint8_t>(v << 4);
-    else frame.data[n / 2] = static_cast<std::uint8_t>(frame.data[n / 2] | v);
+    if (n % 2 == 0)
+      frame.data[n / 2] = static_cast<std::uint8_t>(v << 4);
+    else
+      frame.data[n / 2] = static_cast<std::uint8_t>(frame.data[n / 2] | v);
     ++n;
   }
   if (n % 2 != 0) return fail(reason, "an even number of hex digits (whole bytes)");

@@ -22,10 +22,12 @@ class LineCursor {
 
   [[noreturn]] void fail(std::string_view expected) const {
     std::string found = std::string(rest_.substr(0, 24));
-    if (found.empty()) found = "end of line";
-    else found = "'" + found + "'";
-    throw DbcError(source_ + ":" + std::to_string(line_number_) + ": expected " + std::string(expected) +
-                   ", found " + found);
+    if (found.empty())
+      found = "end of line";
+    else
+      found = "'" + found + "'";
+    throw DbcError(source_ + ":" + std::to_string(line_number_) + ": expected " + std::string(expected) + ", found " +
+                   found);
   }
 
   void skipSpace() {

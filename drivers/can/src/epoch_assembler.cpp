@@ -20,7 +20,8 @@ EpochAssembler::EpochAssembler(const ImuFrameCodec& codec, EpochSettings setting
   sequence_mask_ = bits == 0 ? 0 : (bits >= 64 ? ~0ull : (1ull << bits) - 1);
   // A quarter of the counter's range (at most 64) behind the newest is "late", the rest
   // "ahead": a 4-bit counter tells 4 epochs late from a skip of up to 11.
-  reorder_window_ = std::max<std::uint64_t>(1, std::min<std::uint64_t>(64, (sequence_mask_ >> 2) + (bits >= 2 ? 1 : 0)));
+  reorder_window_ =
+      std::max<std::uint64_t>(1, std::min<std::uint64_t>(64, (sequence_mask_ >> 2) + (bits >= 2 ? 1 : 0)));
 }
 
 bool EpochAssembler::sameEpoch(const EpochKey& key, const DecodedFrame& d, std::int64_t t_ns) const {
@@ -55,7 +56,7 @@ void EpochAssembler::countSequence(std::uint64_t sequence) {
       const bool newer_missing = behind >= 2 && (missing_recent_ & (bit >> 1)) != 0;
       const bool older_missing = behind < 64 && (missing_recent_ & (bit << 1)) != 0;
       if (!newer_missing && !older_missing && counters_.sequence_gaps > 0) --counters_.sequence_gaps;  // gap filled
-      if (newer_missing && older_missing) ++counters_.sequence_gaps;    // its gap is split in two
+      if (newer_missing && older_missing) ++counters_.sequence_gaps;  // its gap is split in two
     }
     return;  // the counter stays at the newest epoch
   }
@@ -72,7 +73,8 @@ void EpochAssembler::countSequence(std::uint64_t sequence) {
 
 void EpochAssembler::add(const DecodedFrame& d) {
   for (int axis = 0; axis < kAxisCount; ++axis) {
-    if ((d.axis_mask & (1u << axis)) != 0) values_[static_cast<std::size_t>(axis)] = d.values[static_cast<std::size_t>(axis)];
+    if ((d.axis_mask & (1u << axis)) != 0)
+      values_[static_cast<std::size_t>(axis)] = d.values[static_cast<std::size_t>(axis)];
   }
   pending_.axis_mask = static_cast<std::uint16_t>(pending_.axis_mask | d.axis_mask);
 }

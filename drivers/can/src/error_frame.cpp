@@ -38,11 +38,10 @@ const char* errorClassSummary(std::uint32_t cls, char* buffer, std::size_t size)
   static constexpr struct {
     std::uint32_t bit;
     const char* name;
-  } kNames[] = {{CAN_ERR_TX_TIMEOUT, "tx-timeout"}, {CAN_ERR_LOSTARB, "lost-arbitration"},
-                {CAN_ERR_CRTL, "controller"},      {CAN_ERR_PROT, "protocol"},
-                {CAN_ERR_TRX, "transceiver"},      {CAN_ERR_ACK, "no-ack"},
-                {CAN_ERR_BUSOFF, "bus-off"},       {CAN_ERR_BUSERROR, "bus-error"},
-                {CAN_ERR_RESTARTED, "restarted"}};
+  } kNames[] = {
+      {CAN_ERR_TX_TIMEOUT, "tx-timeout"}, {CAN_ERR_LOSTARB, "lost-arbitration"}, {CAN_ERR_CRTL, "controller"},
+      {CAN_ERR_PROT, "protocol"},         {CAN_ERR_TRX, "transceiver"},          {CAN_ERR_ACK, "no-ack"},
+      {CAN_ERR_BUSOFF, "bus-off"},        {CAN_ERR_BUSERROR, "bus-error"},       {CAN_ERR_RESTARTED, "restarted"}};
   if (size == 0) return buffer;
   buffer[0] = '\0';
   std::size_t used = 0;

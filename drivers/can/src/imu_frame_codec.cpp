@@ -166,9 +166,12 @@ int ImuFrameCodec::encode(const core::ImuSample& sample, std::uint64_t sequence,
     f.len = static_cast<std::uint8_t>(b.dlc);
     for (const auto& a : b.axes) {
       double si = 0.0;
-      if (a.axis < 3) si = sample.gyro_rad_s[a.axis];
-      else if (a.axis < 6) si = sample.accel_m_s2[a.axis - 3];
-      else si = sample.mag_uT[a.axis - 6];
+      if (a.axis < 3)
+        si = sample.gyro_rad_s[a.axis];
+      else if (a.axis < 6)
+        si = sample.accel_m_s2[a.axis - 3];
+      else
+        si = sample.mag_uT[a.axis - 6];
       if (encodeSignal(a.signal, si / a.scale_to_si, f.data) != EncodeResult::exact_or_rounded) ++clamped;
     }
     if (b.has_sequence) insertRawBits(b.sequence, sequence, f.data);

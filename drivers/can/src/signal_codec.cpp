@@ -62,8 +62,8 @@ std::int64_t extractRaw(const DbcSignal& s, const Payload& data) {
 }
 
 double decodeSignal(const DbcSignal& s, const Payload& data) {
-  const double raw = s.is_signed ? static_cast<double>(extractRaw(s, data))
-                                 : static_cast<double>(extractRawBits(s, data));
+  const double raw =
+      s.is_signed ? static_cast<double>(extractRaw(s, data)) : static_cast<double>(extractRawBits(s, data));
   return raw * s.factor + s.offset;
 }
 
@@ -87,8 +87,8 @@ EncodeResult encodeSignal(const DbcSignal& s, double value, Payload& data) {
   if (!std::isfinite(value)) return EncodeResult::not_finite;
   // Representable raw range; doubles hold every integer up to 2^53, enough for IMU signals.
   const double raw_min = s.is_signed ? -std::ldexp(1.0, static_cast<int>(s.length) - 1) : 0.0;
-  const double raw_max =
-      s.is_signed ? std::ldexp(1.0, static_cast<int>(s.length) - 1) - 1.0 : std::ldexp(1.0, static_cast<int>(s.length)) - 1.0;
+  const double raw_max = s.is_signed ? std::ldexp(1.0, static_cast<int>(s.length) - 1) - 1.0
+                                     : std::ldexp(1.0, static_cast<int>(s.length)) - 1.0;
   double raw = std::nearbyint((value - s.offset) / s.factor);
   EncodeResult result = EncodeResult::exact_or_rounded;
   if (!(raw >= raw_min)) {

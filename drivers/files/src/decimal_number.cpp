@@ -140,7 +140,7 @@ char* writeFixed(char* out, double value, int digits) {
     return std::to_chars(out, out + 340 + digits, value, std::chars_format::fixed, digits).ptr;
   }
   const std::uint64_t n = roundScaled(magnitude, digits);
-  *out = '-';  // printf keeps the sign of -0.0 and of -0.0000001
+  *out = '-';                  // printf keeps the sign of -0.0 and of -0.0000001
   out += std::signbit(value);  // no branch: signs come at random
   return writeScaled(out, n, digits);
 }

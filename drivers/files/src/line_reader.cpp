@@ -26,7 +26,9 @@ constexpr unsigned kZlibBufferBytes = 1 << 15;
 
 LineReader::LineReader(std::string path, std::size_t max_line_bytes)
     : path_(std::move(path)),
-      max_line_bytes_(std::max(max_line_bytes, kBufferBytes)), buffer_(std::make_unique_for_overwrite<char[]>(kBufferBytes)), capacity_(kBufferBytes) {
+      max_line_bytes_(std::max(max_line_bytes, kBufferBytes)),
+      buffer_(std::make_unique_for_overwrite<char[]>(kBufferBytes)),
+      capacity_(kBufferBytes) {
   gzFile file = nullptr;
   try {
     InputFile input(path_);  // no total limit: read a buffer at a time

@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "headingd/nmea/comment_filter.hpp"
-#include "headingd/nmea/parser.hpp"
-#include "headingd/nmea/gps_observation_from_fix.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/nmea/comment_filter.hpp"
+#include "headingd/nmea/gps_observation_from_fix.hpp"
+#include "headingd/nmea/parser.hpp"
 
 namespace headingd::files {
 namespace {

@@ -6,10 +6,10 @@
 #include <utility>
 #include <variant>
 
+#include <spdlog/spdlog.h>
 #include <boost/asio/connect.hpp>
 #include <boost/asio/error.hpp>
 #include <boost/asio/write.hpp>
-#include <spdlog/spdlog.h>
 
 namespace headingd::gpsd {
 namespace {
@@ -139,11 +139,12 @@ void GpsdClient::onConnected() {
   counters_.state = GpsdState::kConnected;
   backoff_.reset();
   spdlog::info("gps: connected to {}, watching", where());
-  boost::asio::async_write(socket_, boost::asio::buffer(kWatchCommand.data(), kWatchCommand.size()),
-                           [this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec, std::size_t) {
-                             if (alive.expired() || ec == boost::asio::error::operation_aborted) return;
-                             if (ec && socket_.is_open()) lose("sending WATCH failed: " + ec.message());
-                           });
+  boost::asio::async_write(
+      socket_, boost::asio::buffer(kWatchCommand.data(), kWatchCommand.size()),
+      [this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec, std::size_t) {
+        if (alive.expired() || ec == boost::asio::error::operation_aborted) return;
+        if (ec && socket_.is_open()) lose("sending WATCH failed: " + ec.message());
+      });
   startRead();
 }
 

@@ -11,9 +11,8 @@ namespace headingd::gpsd {
 bool isPlausibleHost(const std::string& host) {
   // Letters, digits, '-', '.' (names, IPv4) and ':' (IPv6); at most a DNS name's 253.
   if (host.empty() || host.size() > 253) return false;
-  return std::all_of(host.begin(), host.end(), [](unsigned char c) {
-    return std::isalnum(c) != 0 || c == '-' || c == '.' || c == ':';
-  });
+  return std::all_of(host.begin(), host.end(),
+                     [](unsigned char c) { return std::isalnum(c) != 0 || c == '-' || c == '.' || c == ':'; });
 }
 
 GpsdConfig parseGpsdTable(const toml::table* gps, const std::string& source) {

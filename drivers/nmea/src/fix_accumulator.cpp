@@ -29,8 +29,7 @@ const char* fixModeName(FixMode m) {
   return "?";
 }
 
-FixAccumulator::FixAccumulator(FixAccumulatorConfig config)
-    : config_(config), century_(config.default_century) {}
+FixAccumulator::FixAccumulator(FixAccumulatorConfig config) : config_(config), century_(config.default_century) {}
 
 void FixAccumulator::apply(const DecodedSentence& s) {
   std::visit(

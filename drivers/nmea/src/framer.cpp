@@ -79,15 +79,9 @@ std::optional<std::string_view> Framer::push(std::uint8_t byte) {
 std::optional<std::string_view> Framer::endLine() {
   state_ = State::kHunting;
   switch (verifyChecksum(line_)) {
-    case ChecksumVerdict::kOk:
-      ++counters_.lines;
-      return std::string_view(line_);
-    case ChecksumVerdict::kMissing:
-      ++counters_.missing_checksum;
-      break;
-    case ChecksumVerdict::kBad:
-      ++counters_.bad_checksum;
-      break;
+    case ChecksumVerdict::kOk: ++counters_.lines; return std::string_view(line_);
+    case ChecksumVerdict::kMissing: ++counters_.missing_checksum; break;
+    case ChecksumVerdict::kBad: ++counters_.bad_checksum; break;
   }
   line_.clear();
   return std::nullopt;

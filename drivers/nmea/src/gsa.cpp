@@ -9,15 +9,10 @@ std::optional<Gsa> decodeGsa(const FieldList& fields, int& invalid_fields) {
   std::size_t prn_slots = 0;
   switch (f.dataFields()) {
     case 17:
-    case 18:
-      prn_slots = 12;
-      break;
+    case 18: prn_slots = 12; break;
     case 29:
-    case 30:
-      prn_slots = 24;
-      break;
-    default:
-      return std::nullopt;
+    case 30: prn_slots = 24; break;
+    default: return std::nullopt;
   }
   Gsa g;
   g.selection = f.letter(1);

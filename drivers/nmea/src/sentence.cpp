@@ -31,17 +31,16 @@ const char* sentenceTypeName(SentenceType t) {
 }
 
 std::optional<Talker> talkerFromCode(std::string_view code) {
-  for (const Talker t : {Talker::kGP, Talker::kGN, Talker::kGL, Talker::kGA, Talker::kGB, Talker::kGQ,
-                         Talker::kBD}) {
+  for (const Talker t : {Talker::kGP, Talker::kGN, Talker::kGL, Talker::kGA, Talker::kGB, Talker::kGQ, Talker::kBD}) {
     if (code == talkerName(t)) return t;
   }
   return std::nullopt;
 }
 
 std::optional<SentenceType> sentenceTypeFromCode(std::string_view code) {
-  for (const SentenceType t : {SentenceType::kGGA, SentenceType::kRMC, SentenceType::kVTG, SentenceType::kGNS,
-                               SentenceType::kGSA, SentenceType::kGST, SentenceType::kHDT, SentenceType::kZDA,
-                               SentenceType::kGLL}) {
+  for (const SentenceType t :
+       {SentenceType::kGGA, SentenceType::kRMC, SentenceType::kVTG, SentenceType::kGNS, SentenceType::kGSA,
+        SentenceType::kGST, SentenceType::kHDT, SentenceType::kZDA, SentenceType::kGLL}) {
     if (code == sentenceTypeName(t)) return t;
   }
   return std::nullopt;

@@ -1,7 +1,7 @@
 #include "headingd/recording/recording_setup.hpp"
 
-#include <filesystem>
 #include <toml++/toml.h>
+#include <filesystem>
 
 #include "headingd/can/can_config_toml.hpp"
 #include "headingd/core/config_error.hpp"
@@ -18,7 +18,8 @@ std::string inFolder(const std::string& folder, std::string_view name) { return 
 
 toml::table readToml(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) {
-    throw core::ConfigError(path + ": not found; expected a black-box recording folder (daemon/README.md, \"Black box\")");
+    throw core::ConfigError(path +
+                            ": not found; expected a black-box recording folder (daemon/README.md, \"Black box\")");
   }
   return core::parseTomlDocument(files::readMaybeGzipFile(path, files::kConfigFileLimit), path);
 }

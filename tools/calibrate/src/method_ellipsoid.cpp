@@ -34,8 +34,10 @@ void calibrateEllipsoid(const Recording& rec, FieldNorm& field, core::ImuCalibra
     o.stationary_count = std::min<std::size_t>(rec.samples.size(), 100);
     report.notes.push_back("no static segment: gyro bias 0 assumed for the misalignment step");
   }
-  progress("ellipsoid fit of %zu magnetometer samples and misalignment to the inertial axes (Kok & Schon "
-           "sec. 6.1-6.2)", rec.mags.size());
+  progress(
+      "ellipsoid fit of %zu magnetometer samples and misalignment to the inertial axes (Kok & Schon "
+      "sec. 6.1-6.2)",
+      rec.mags.size());
   const calib::MlInitialEstimate init = calib::estimateInitialParameters(rec.samples, o);
   cal.mag.D = init.D;
   cal.mag.offset_uT = init.offset_uT;
@@ -54,7 +56,8 @@ void calibrateEllipsoid(const Recording& rec, FieldNorm& field, core::ImuCalibra
                                   misalignment.angle() / kRadPerDeg, init.misalignment_rms, ""));
   if (init.misalignment_sign_chosen) {
     report.notes.push_back(std::string("misalignment: the best minimum of eq. 27 had the dip sign the place rules "
-                                       "out; the best of sign ") + calib::dipSignName(rec.dip_sign) + " was taken");
+                                       "out; the best of sign ") +
+                           calib::dipSignName(rec.dip_sign) + " was taken");
   }
   const double fit_residual = init.ellipsoid_residual_rms_uT;
   report.residuals = radialResiduals(cal, rec.mags, restSigmaCalibrated(cal, rec.mag_sigma_raw, fit_residual));

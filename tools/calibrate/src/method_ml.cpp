@@ -63,10 +63,9 @@ void calibrateMl(const Recording& rec, const MlSettings& ml, FieldNorm& field, c
     if (res.has_mag) report.residuals.insert(report.residuals.end(), {res.mag.x(), res.mag.y(), res.mag.z()});
   }
   report.residual_kind = "EKF magnetometer innovations, normalised (x, y, z interleaved)";
-  report.notes.push_back(describe("ML: %.0f iterations, %.2f s; cost from the initial estimate ", r.iterations,
-                                  ml_seconds, "") +
-                         std::to_string(r.cost_initial) + " to " + std::to_string(r.cost_final) + " (" +
-                         r.termination + ")");
+  report.notes.push_back(
+      describe("ML: %.0f iterations, %.2f s; cost from the initial estimate ", r.iterations, ml_seconds, "") +
+      std::to_string(r.cost_initial) + " to " + std::to_string(r.cost_final) + " (" + r.termination + ")");
   if (r.starts > 1) {
     report.notes.push_back(std::string("ML: the first search ended at the dip's wall (") + r.termination_first_start +
                            "); a second started from the WMM's dip" +

@@ -10,8 +10,8 @@ namespace headingd::calibrate {
 
 using core::Vec3;
 
-Recording prepareRecording(std::span<const core::ImuSample> samples, calib::DipSign dip_sign,
-                           core::ImuCalibration& cal, ReportInput& report) {
+Recording prepareRecording(std::span<const core::ImuSample> samples, calib::DipSign dip_sign, core::ImuCalibration& cal,
+                           ReportInput& report) {
   Recording rec;
   rec.samples = samples;
   rec.dip_sign = dip_sign;
@@ -63,8 +63,7 @@ std::vector<double> radialResiduals(const core::ImuCalibration& cal, std::span<c
   return r;
 }
 
-double restSigmaCalibrated(const core::ImuCalibration& cal, const std::optional<Vec3>& mag_sigma_raw,
-                           double fallback) {
+double restSigmaCalibrated(const core::ImuCalibration& cal, const std::optional<Vec3>& mag_sigma_raw, double fallback) {
   if (!mag_sigma_raw || !(mag_sigma_raw->norm() > 0.0)) return fallback;
   return mag_sigma_raw->norm() / std::sqrt(3.0) / std::cbrt(std::abs(cal.mag.D.determinant()));
 }

@@ -10,7 +10,8 @@
 namespace headingd::calibrate {
 
 void calibrateThesis(const Recording& rec, const FieldNorm& field, core::ImuCalibration& cal, ReportInput& report) {
-  if (!field.norm_uT) throw calib::CalibrationError("thesis: the field norm is needed: give --field-uT or --lat/--lon/--date");
+  if (!field.norm_uT)
+    throw calib::CalibrationError("thesis: the field norm is needed: give --field-uT or --lat/--lon/--date");
   const auto faces = calib::findSixFaces(rec.segments);
   progress("six faces found; accelerometer (eq. 2.40), gyroscope (eq. 2.41), magnetometer (Newton, eq. 2.47)");
   const auto acc = calib::calibrateAccelSixPosition(rec.segments, faces, 9.81);
@@ -18,8 +19,8 @@ void calibrateThesis(const Recording& rec, const FieldNorm& field, core::ImuCali
   cal.accel.bias_m_s2 = acc.bias_m_s2;
   const auto gs = calib::gyroScaleFromTurns(rec.samples, rec.segments, cal.gyro.bias_rad_s, rec.rate_hz);
   cal.gyro.scale = gs.scale;
-  report.notes.push_back("gyroscope scale from whole turns about x, y, z: " + std::to_string(gs.turns_used[0]) +
-                         ", " + std::to_string(gs.turns_used[1]) + ", " + std::to_string(gs.turns_used[2]) +
+  report.notes.push_back("gyroscope scale from whole turns about x, y, z: " + std::to_string(gs.turns_used[0]) + ", " +
+                         std::to_string(gs.turns_used[1]) + ", " + std::to_string(gs.turns_used[2]) +
                          " (0: left at 1)");
   const auto mag = calib::calibrateMagSixPosition(rec.segments, faces, *field.norm_uT, field.dip_rad);
   cal.mag.D = mag.alpha.inverse();

@@ -9,9 +9,7 @@ const auto g_start = std::chrono::steady_clock::now();
 
 }  // namespace
 
-double secondsSinceStart() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - g_start).count();
-}
+double secondsSinceStart() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - g_start).count(); }
 
 std::string describe(const char* fmt, double a, double b, const std::string& c) {
   char buf[256];

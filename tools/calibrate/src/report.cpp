@@ -44,13 +44,15 @@ std::string projections(const std::vector<Vec3>& points, const std::string& titl
 Verdict judge(const ReportInput& in) {
   Verdict v;
   // Coverage: the fraction of equal-area cells of the sphere the calibrated directions hit.
-  if (in.coverage >= 0.5) v.coverage = "good: the rotations cover " + fmt("%.0f", 100 * in.coverage) + " % of the sphere";
+  if (in.coverage >= 0.5)
+    v.coverage = "good: the rotations cover " + fmt("%.0f", 100 * in.coverage) + " % of the sphere";
   else if (in.coverage >= 0.25)
     v.coverage = "fair: " + fmt("%.0f", 100 * in.coverage) +
                  " % of the sphere covered; more turns with other faces up would pin the ellipsoid down better";
   else
-    v.coverage = "poor: only " + fmt("%.0f", 100 * in.coverage) +
-                 " % of the sphere covered; the calibration is not trustworthy -- turn the sensor through all directions";
+    v.coverage =
+        "poor: only " + fmt("%.0f", 100 * in.coverage) +
+        " % of the sphere covered; the calibration is not trustworthy -- turn the sensor through all directions";
   const std::size_t n = in.residuals.size();
   double mean = 0.0, var = 0.0, c1 = 0.0;
   for (const double r : in.residuals) mean += r;
@@ -74,8 +76,10 @@ Verdict judge(const ReportInput& in) {
     v.whiteness = "strongly correlated: lag-1 autocorrelation " + fmt("%.2f", v.lag1_autocorrelation) +
                   " -- the model does not explain the data (a disturbance that moved, or a distortion "
                   "that is not constant)";
-  if (in.condition_number <= 0.0) v.condition = "not computed for this method";
-  else if (in.condition_number < 30.0) v.condition = "well conditioned (" + fmt("%.0f", in.condition_number) + ")";
+  if (in.condition_number <= 0.0)
+    v.condition = "not computed for this method";
+  else if (in.condition_number < 30.0)
+    v.condition = "well conditioned (" + fmt("%.0f", in.condition_number) + ")";
   else if (in.condition_number < 100.0)
     v.condition = "moderately conditioned (" + fmt("%.0f", in.condition_number) +
                   "): some parameters are only loosely determined";
@@ -150,8 +154,9 @@ void writeReport(const std::string& dir, const ReportInput& in) {
   SvgPlot hist("Normalised residuals (K&S Figs. 5, 6)", in.residual_kind, "density", 600, 320);
   hist.bars(centres, density, kWidth, "#36c", "residuals");
   hist.line(pdf_x, pdf_y, "#000", "N(0,1)");
-  h << "<h2>Residuals</h2>\n" << hist.render() << "<p>" << in.residual_kind << "; "
-    << in.residuals.size() - inside << " of " << in.residuals.size() << " outside the plotted range.</p>\n";
+  h << "<h2>Residuals</h2>\n"
+    << hist.render() << "<p>" << in.residual_kind << "; " << in.residuals.size() - inside << " of "
+    << in.residuals.size() << " outside the plotted range.</p>\n";
   h << "</body></html>\n";
   const std::string path = (std::filesystem::path(dir) / "index.html").string();
   files::writeWholeOutputFile(path, h.str());

@@ -13,10 +13,14 @@ namespace {
 std::string escape(const std::string& s) {
   std::string out;
   for (const char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
   }
   return out;
 }
@@ -40,7 +44,11 @@ std::string num(double v) {
 }  // namespace
 
 SvgPlot::SvgPlot(std::string title, std::string x_label, std::string y_label, int width, int height)
-    : title_(std::move(title)), x_label_(std::move(x_label)), y_label_(std::move(y_label)), width_(width), height_(height) {}
+    : title_(std::move(title)),
+      x_label_(std::move(x_label)),
+      y_label_(std::move(y_label)),
+      width_(width),
+      height_(height) {}
 
 void SvgPlot::scatter(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour,
                       const std::string& legend) {
@@ -125,8 +133,8 @@ std::string SvgPlot::render() const {
       for (std::size_t i = 0; i < n; ++i) {
         const double top = py(std::max(s.y[i], 0.0)), bottom = py(0.0);
         o << "<rect x=\"" << num(px(s.x[i] - 0.5 * s.bar_width)) << "\" y=\"" << num(top) << "\" width=\""
-          << num(px(s.x[i] + 0.5 * s.bar_width) - px(s.x[i] - 0.5 * s.bar_width)) << "\" height=\""
-          << num(bottom - top) << "\"/>";
+          << num(px(s.x[i] + 0.5 * s.bar_width) - px(s.x[i] - 0.5 * s.bar_width)) << "\" height=\"" << num(bottom - top)
+          << "\"/>";
       }
       o << "</g>\n";
     }

@@ -1,6 +1,5 @@
 #include "headingd/lcm_export/csv_table.hpp"
 
-
 namespace headingd::lcm_export {
 
 void appendCsvCell(std::string& out, std::string_view cell) {

@@ -15,9 +15,7 @@ void putBigEndian(std::uint8_t* out, T value) {
 
 }  // namespace
 
-LcmLogWriter::LcmLogWriter(const std::string& path) : path_(path) {
-  file_ = std::make_unique<files::OutputFile>(path);
-}
+LcmLogWriter::LcmLogWriter(const std::string& path) : path_(path) { file_ = std::make_unique<files::OutputFile>(path); }
 
 LcmLogWriter::~LcmLogWriter() = default;
 

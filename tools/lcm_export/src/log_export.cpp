@@ -139,7 +139,8 @@ ExportResult exportLcmLog(const ExportOptions& options) {
     std::error_code not_there;
     if (std::filesystem::equivalent(options.log_path, table_paths.back(), not_there)) {
       throw TableOverLogError("the table " + table_paths.back().string() + " would be the log " +
-                              options.log_path.string() + " itself: refusing to overwrite the log (choose another --out-dir)");
+                              options.log_path.string() +
+                              " itself: refusing to overwrite the log (choose another --out-dir)");
     }
   }
   std::size_t table_index = 0;

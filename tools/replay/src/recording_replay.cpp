@@ -1,15 +1,15 @@
 #include "recording_replay.hpp"
 
+#include <toml++/toml.h>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <stdexcept>
-#include <toml++/toml.h>
 
+#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_calibration_toml.hpp"
-#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/core/toml_document.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
@@ -66,18 +66,20 @@ class EstimateLog {
 
 void printRecordingCounters(const recording::RecordingReader& reader, const core::HeadingPipeline& pipeline) {
   const recording::RecordingCounters& c = reader.counters();
-  std::fprintf(stderr,
-               "{\"recording_complete\":%s,\"can_frames\":%llu,\"can_flushes\":%llu,\"imu_samples\":%llu,"
-               "\"imu_dropped_live\":%llu,\"gps_epochs\":%llu,\"gps_epochs_not_placed\":%llu,\"gps_values_ignored\":%llu,"
-               "\"calibration_reloads\":%llu,\"lost_lines\":%llu,\"bad_lines\":%llu,\"start_missing\":%s}\n",
-               reader.complete() ? "true" : "false", static_cast<unsigned long long>(c.can_frames),
-               static_cast<unsigned long long>(c.can_flushes), static_cast<unsigned long long>(c.imu_samples),
-               static_cast<unsigned long long>(c.imu_dropped_live), static_cast<unsigned long long>(c.gps_epochs),
-               static_cast<unsigned long long>(c.gps_epochs_not_placed),
-               static_cast<unsigned long long>(pipeline.gpsValuesIgnored()),
-               static_cast<unsigned long long>(c.calibration_reloads), static_cast<unsigned long long>(c.lost_lines),
-               static_cast<unsigned long long>(c.bad_lines), c.start_missing ? "true" : "false");
-  if (!c.first_bad_line.empty()) std::fprintf(stderr, "headingd-replay: first unreadable line: %s\n", c.first_bad_line.c_str());
+  std::fprintf(
+      stderr,
+      "{\"recording_complete\":%s,\"can_frames\":%llu,\"can_flushes\":%llu,\"imu_samples\":%llu,"
+      "\"imu_dropped_live\":%llu,\"gps_epochs\":%llu,\"gps_epochs_not_placed\":%llu,\"gps_values_ignored\":%llu,"
+      "\"calibration_reloads\":%llu,\"lost_lines\":%llu,\"bad_lines\":%llu,\"start_missing\":%s}\n",
+      reader.complete() ? "true" : "false", static_cast<unsigned long long>(c.can_frames),
+      static_cast<unsigned long long>(c.can_flushes), static_cast<unsigned long long>(c.imu_samples),
+      static_cast<unsigned long long>(c.imu_dropped_live), static_cast<unsigned long long>(c.gps_epochs),
+      static_cast<unsigned long long>(c.gps_epochs_not_placed),
+      static_cast<unsigned long long>(pipeline.gpsValuesIgnored()),
+      static_cast<unsigned long long>(c.calibration_reloads), static_cast<unsigned long long>(c.lost_lines),
+      static_cast<unsigned long long>(c.bad_lines), c.start_missing ? "true" : "false");
+  if (!c.first_bad_line.empty())
+    std::fprintf(stderr, "headingd-replay: first unreadable line: %s\n", c.first_bad_line.c_str());
 }
 
 }  // namespace
@@ -86,12 +88,13 @@ int replayRecording(const RecordingReplayOptions& options) {
   const recording::RecordingSetup setup = recording::loadRecordingSetup(options.dir);
   std::optional<core::WorldMagneticModel> wmm;
   if (!setup.wmm_path.empty()) {
-    wmm.emplace(core::parseWmmCoefficients(files::readMaybeGzipFile(setup.wmm_path, files::kWmmFileLimit), setup.wmm_path));
+    wmm.emplace(
+        core::parseWmmCoefficients(files::readMaybeGzipFile(setup.wmm_path, files::kWmmFileLimit), setup.wmm_path));
   }
   core::CalibratedImuStream calibration;
   if (!setup.calibration_path.empty()) {
-    calibration = core::CalibratedImuStream(
-        core::parseImuCalibration(files::readMaybeGzipFile(setup.calibration_path, files::kConfigFileLimit), setup.calibration_path));
+    calibration = core::CalibratedImuStream(core::parseImuCalibration(
+        files::readMaybeGzipFile(setup.calibration_path, files::kConfigFileLimit), setup.calibration_path));
   }
   core::HeadingPipeline pipeline(setup.estimator, wmm ? &*wmm : nullptr);
   if (setup.place && wmm) usePlace(pipeline, *setup.place, *wmm);
@@ -119,20 +122,20 @@ int replayRecording(const RecordingReplayOptions& options) {
         ++samples;
         break;
       }
-      case recording::RecordingStep::Kind::kGps:
-        pipeline.processGps(step.gps);
-        break;
+      case recording::RecordingStep::Kind::kGps: pipeline.processGps(step.gps); break;
       case recording::RecordingStep::Kind::kCalibrationReloaded:
-        std::fprintf(stderr, "headingd-replay: the live run re-read its calibration after %zu IMU samples (SIGHUP); "
-                             "this replay keeps the one recorded at the start\n", samples);
+        std::fprintf(stderr,
+                     "headingd-replay: the live run re-read its calibration after %zu IMU samples (SIGHUP); "
+                     "this replay keeps the one recorded at the start\n",
+                     samples);
         continue;
     }
     if (estimates) estimates->write(pipeline, last_used_t_ns);
   }
   if (rows && row_pending_t_ns) rows->write(*row_pending_t_ns, pipeline.output());
   // Here the time is the whole loop's, reading and writing included.
-  const ReplayTotals totals{samples, std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                         std::chrono::steady_clock::now() - start)};
+  const ReplayTotals totals{
+      samples, std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)};
   if (rows) rows->close();
   if (estimates) estimates->close();
   printCounters(pipeline.estimator().counters(), totals);

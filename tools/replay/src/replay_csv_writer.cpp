@@ -42,9 +42,9 @@ ReplayCsvWriter::ReplayCsvWriter(const std::string& path, bool with_gps)
   file_ = std::make_unique<files::OutputFile>(path);
   used_ = static_cast<std::size_t>(
       put(buffer_.get(), with_gps ? "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_mag_deg,declination_deg,"
-                                     "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,"
-                                     "mag_disturbed,heading_mag_sigma_deg,heading_true_sigma_deg\n"
-                                   : "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg\n") -
+                                    "declination_sigma_deg,declination_source,mount_yaw_deg,heading_true_deg,"
+                                    "mag_disturbed,heading_mag_sigma_deg,heading_true_sigma_deg\n"
+                                  : "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg\n") -
       buffer_.get());
 }
 

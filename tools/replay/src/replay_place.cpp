@@ -5,7 +5,8 @@
 
 namespace headingd::replay {
 
-void usePlace(core::HeadingPipeline& pipeline, const core::ConfiguredPlace& place, const core::WorldMagneticModel& wmm) {
+void usePlace(core::HeadingPipeline& pipeline, const core::ConfiguredPlace& place,
+              const core::WorldMagneticModel& wmm) {
   const std::int64_t now_ns =
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
   std::string warning;

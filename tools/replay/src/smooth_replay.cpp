@@ -14,8 +14,7 @@ SmoothedReplay smoothSamples(const std::function<bool(core::ImuSample*)>& next_s
 
   SmoothedReplay result;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<core::AttitudeEstimate> smoothed =
-      core::smoothAttitudes(samples, params, &result.forward_counters);
+  const std::vector<core::AttitudeEstimate> smoothed = core::smoothAttitudes(samples, params, &result.forward_counters);
   result.totals.estimator_time = std::chrono::steady_clock::now() - start;
   result.totals.rows = samples.size();
 

@@ -53,10 +53,8 @@ Scenario movingDisturbancesScenario() {
   const FieldDisturbanceSpec crossing{
       .transients_per_min = 12.0, .transient_peak_uT = 20.0, .transient_max_half_width_s = 3.0};
   const FieldDisturbanceSpec hall{.spatial_sigma_uT = 2.0};
-  const FieldDisturbanceSpec landing{.spatial_sigma_uT = 2.0,
-                                     .transients_per_min = 4.0,
-                                     .transient_peak_uT = 40.0,
-                                     .transient_max_half_width_s = 6.0};
+  const FieldDisturbanceSpec landing{
+      .spatial_sigma_uT = 2.0, .transients_per_min = 4.0, .transient_peak_uT = 40.0, .transient_max_half_width_s = 6.0};
   const FieldDisturbanceSpec cabin{.random_offset_uT = 25.0};
   const FieldDisturbanceSpec upper_floor{.spatial_sigma_uT = 3.0};
   s.phases = {

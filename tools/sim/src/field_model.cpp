@@ -24,8 +24,8 @@ FieldModel::FieldModel(const Scenario& scenario, const core::MagneticFieldElemen
       declination_deg_(wmm.declination_deg + anomaly_deg) {
   // Per phase: the given offset plus a seeded one of the given size.
   for (const Phase& p : scenario.phases) {
-    const Vec3 random_offset = p.field.random_offset_uT > 0.0 ? Vec3(p.field.random_offset_uT * rng.unitVector())
-                                                              : Vec3::Zero();
+    const Vec3 random_offset =
+        p.field.random_offset_uT > 0.0 ? Vec3(p.field.random_offset_uT * rng.unitVector()) : Vec3::Zero();
     phase_fields_.push_back({p.field.offset_ned_uT + random_offset, p.field.spatial_sigma_uT});
   }
   // Position-dependent field of a building: a few plane waves, horizontal wavelengths of

@@ -70,10 +70,18 @@ GaitParams gaitParams(Activity a) {
       // Seated in a car, leaning back a little: 12 m/s (43 km/h) cruising; speed changes
       // blend over 6 s (peak 3.75 m/s² from standstill, a brisk start). The "steps" are the
       // road's vibration at 11 Hz: 0.2 mm vertical (about 1 m/s²), small pitch and roll.
-      p = GaitParams{.speed_mps = 12.0, .step_hz = 11.0, .pitch_deg = 8.0, .height_m = 1.0,
-                     .forward_m = 0.0001, .lateral_m = 0.0001, .vertical_m = 0.0002,
-                     .osc_pitch_deg = 0.1, .osc_roll_deg = 0.15, .osc_yaw_deg = 0.05,
-                     .sway_deg = 0.3, .transition_s = 6.0};
+      p = GaitParams{.speed_mps = 12.0,
+                     .step_hz = 11.0,
+                     .pitch_deg = 8.0,
+                     .height_m = 1.0,
+                     .forward_m = 0.0001,
+                     .lateral_m = 0.0001,
+                     .vertical_m = 0.0002,
+                     .osc_pitch_deg = 0.1,
+                     .osc_roll_deg = 0.15,
+                     .osc_yaw_deg = 0.05,
+                     .sway_deg = 0.3,
+                     .transition_s = 6.0};
       break;
   }
   return p;

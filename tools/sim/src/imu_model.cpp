@@ -40,7 +40,7 @@ TriadErrorParams consumerGyro() {
   p.bias_walk_density = Vec3(0.00158, 0.00142, 0.00157) / 60.0;
   // [K&S] δω ~ U(-1, 1) per axis; the table prints no unit, read as °/s.
   p.offset_half_width = Vec3::Constant(1.0 * kRadPerDeg);
-  p.scale_half_width = 0.005;             // [ours] ±0.5 %
+  p.scale_half_width = 0.005;                    // [ours] ±0.5 %
   p.skew_half_width_rad = 0.2 * kRadPerDeg;      // [ours]
   p.rotation_half_width_rad = 0.2 * kRadPerDeg;  // [ours]
   return p;
@@ -54,9 +54,9 @@ TriadErrorParams consumerAccel() {
   // of their accelerometer model, b' = -b/τ + n.
   p.markov_sigma = Vec3(0.1484, 0.0373, 0.0881) * kMilliG;
   p.markov_time_s = Vec3(18.16, 48.05, 197.2);
-  p.offset_half_width = Vec3::Constant(0.02);  // [ours] ±2 mg residual offset
-  p.scale_half_width = 0.005;                   // [ours]
-  p.skew_half_width_rad = 0.2 * kRadPerDeg;     // [ours]
+  p.offset_half_width = Vec3::Constant(0.02);    // [ours] ±2 mg residual offset
+  p.scale_half_width = 0.005;                    // [ours]
+  p.skew_half_width_rad = 0.2 * kRadPerDeg;      // [ours]
   p.rotation_half_width_rad = 0.2 * kRadPerDeg;  // [ours]
   return p;
 }
@@ -67,9 +67,9 @@ TriadErrorParams consumerMag(double field_uT) {
   // (about 1.6 µT at 51 µT), per sample.
   p.noise_sigma = Vec3::Constant(std::sqrt(1e-3) * field_uT);
   p.offset_half_width = Vec3::Constant(0.02 * field_uT);  // [ours] residual hard iron, ~1 µT
-  p.scale_half_width = 0.005;                               // [ours] residual soft iron
-  p.skew_half_width_rad = 0.2 * kRadPerDeg;                 // [ours]
-  p.rotation_half_width_rad = 0.5 * kRadPerDeg;             // [ours] magnetometer to IMU axes
+  p.scale_half_width = 0.005;                             // [ours] residual soft iron
+  p.skew_half_width_rad = 0.2 * kRadPerDeg;               // [ours]
+  p.rotation_half_width_rad = 0.5 * kRadPerDeg;           // [ours] magnetometer to IMU axes
   return p;
 }
 
@@ -101,8 +101,8 @@ TriadErrorParams uncalibratedMag(double field_uT) {
 // Kok & Schön eq. 32.
 Mat3 skewMatrix(double zeta, double eta, double rho) {
   Mat3 m;
-  m << 1.0, 0.0, 0.0,                                                   //
-      std::sin(zeta), std::cos(zeta), 0.0,                              //
+  m << 1.0, 0.0, 0.0,                       //
+      std::sin(zeta), std::cos(zeta), 0.0,  //
       -std::sin(eta), std::cos(eta) * std::sin(rho), std::cos(eta) * std::cos(rho);
   return m;
 }

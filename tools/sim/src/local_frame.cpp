@@ -9,8 +9,8 @@ struct LocalFrame::Impl {
 };
 
 LocalFrame::LocalFrame(const Geodetic& origin)
-    : impl_(std::make_unique<Impl>(Impl{GeographicLib::LocalCartesian(origin.latitude_deg, origin.longitude_deg,
-                                                                        origin.height_m)})) {}
+    : impl_(std::make_unique<Impl>(
+          Impl{GeographicLib::LocalCartesian(origin.latitude_deg, origin.longitude_deg, origin.height_m)})) {}
 LocalFrame::~LocalFrame() = default;
 LocalFrame::LocalFrame(LocalFrame&&) noexcept = default;
 LocalFrame& LocalFrame::operator=(LocalFrame&&) noexcept = default;

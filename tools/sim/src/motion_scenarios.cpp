@@ -117,10 +117,10 @@ Scenario handheldScenario(std::uint64_t seed) {
   }
   hold(script, 30.0);
   return scriptedScenario("handheld",
-                       "Vigorous hand-held handling (seeded): 10 s still, ~60 s of turning to a new attitude every "
-                       "0.4-1.2 s (rates up to ~600 deg/s) while the hand moves at 0.5-3 Hz and 0.5-2 g, sensor "
-                       "15 cm from the wrist; 30 s still.",
-                       std::move(script));
+                          "Vigorous hand-held handling (seeded): 10 s still, ~60 s of turning to a new attitude every "
+                          "0.4-1.2 s (rates up to ~600 deg/s) while the hand moves at 0.5-3 Hz and 0.5-2 g, sensor "
+                          "15 cm from the wrist; 30 s still.",
+                          std::move(script));
 }
 
 Scenario slowRotationScenario(std::uint64_t seed) {
@@ -142,9 +142,9 @@ Scenario slowRotationScenario(std::uint64_t seed) {
   }
   hold(script, 20.0);
   return scriptedScenario("slow-rotation",
-                       "Gentle slow rotation (seeded): 10 s still, ~90 s of turning to a new attitude every 3-8 s "
-                       "(tilt up to 60 deg, rates mostly 2-25 deg/s), 20 s still.",
-                       std::move(script));
+                          "Gentle slow rotation (seeded): 10 s still, ~90 s of turning to a new attitude every 3-8 s "
+                          "(tilt up to 60 deg, rates mostly 2-25 deg/s), 20 s still.",
+                          std::move(script));
 }
 
 }  // namespace headingd::sim

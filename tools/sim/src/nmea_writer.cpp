@@ -41,9 +41,9 @@ UtcStamp utcAt(const UtcClock& clock, double t_s) {
   const long long day_offset = centis / 8640000;
   const long long cs_of_day = centis % 8640000;
   using namespace std::chrono;
-  const year_month_day date{sys_days{year{clock.year} / month{static_cast<unsigned>(clock.month)} /
-                                     static_cast<unsigned>(clock.day)} +
-                            days{day_offset}};
+  const year_month_day date{
+      sys_days{year{clock.year} / month{static_cast<unsigned>(clock.month)} / static_cast<unsigned>(clock.day)} +
+      days{day_offset}};
   UtcStamp s;
   s.hhmmss = format("%02lld%02lld%02lld.%02lld", cs_of_day / 360000, cs_of_day / 6000 % 60, cs_of_day / 100 % 60,
                     cs_of_day % 100);
@@ -81,9 +81,8 @@ std::string nmeaEpoch(const GpsEpoch& e, const NmeaContext& c) {
   const std::string course = e.course_deg ? degrees360(*e.course_deg) : "";
   const double var = c.magnetic_variation_deg;
   const std::string variation = format("%.1f,%c", std::abs(var), var < 0.0 ? 'W' : 'E');
-  const std::string rmc =
-      tk + "RMC," + utc.hhmmss + ",A," + lat + "," + lon + "," + knots + "," + course + "," + utc.ddmmyy + "," +
-      variation + ",A";
+  const std::string rmc = tk + "RMC," + utc.hhmmss + ",A," + lat + "," + lon + "," + knots + "," + course + "," +
+                          utc.ddmmyy + "," + variation + ",A";
   const std::string magnetic_course = e.course_deg ? degrees360(*e.course_deg - var) : "";
   const std::string vtg = tk + "VTG," + course + ",T," + magnetic_course + ",M," + knots + ",N," +
                           format("%.3f", e.speed_mps * 3.6) + ",K,A";

@@ -90,9 +90,8 @@ void writeTruthCsv(std::ostream& out, const SimResult& r) {
            deg360(core::headingOfAxis(s.q_nb, core::kDocumentedHeadAxis)),
            core::headHeight(s.q_nb, core::kDocumentedHeadAxis), deg360(s.path_heading_rad),
            std::hypot(s.velocity_ned_mps.x(), s.velocity_ned_mps.y()));
-    append(line, "%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f,", s.position_ned_m.x(),
-           s.position_ned_m.y(), s.position_ned_m.z(), f.x(), f.y(), f.z(), r.disturbance_ned_uT[k].norm(), q.w(),
-           q.x(), q.y(), q.z());
+    append(line, "%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f,", s.position_ned_m.x(), s.position_ned_m.y(),
+           s.position_ned_m.z(), f.x(), f.y(), f.z(), r.disturbance_ned_uT[k].norm(), q.w(), q.x(), q.y(), q.z());
     const Vec3& b = r.imu[k].gyro_bias_rad_s;
     append(line, "%.9g,%.9g,%.9g\n", b.x(), b.y(), b.z());
     out << line;
@@ -135,22 +134,20 @@ void writeSensorErrors(std::ostream& out, const SimResult& r) {
   std::string s;
   append(s, "# headingd-sim: the IMU errors drawn for this run. Each triad reads\n");
   append(s, "#   y = D x + o + b(t) + n   (sensor axes; b drifts from 0, n white with the given sigma)\n");
-  append(s, "[run]\nscenario = \"%s\"\nseed = %llu\nimu_grade = \"%s\"\nvector_sampling = \"%s\"\n",
-         c.scenario.c_str(), static_cast<unsigned long long>(c.seed), imuGradeName(c.imu_grade),
-         vectorSamplingName(c.vector_sampling));
+  append(s, "[run]\nscenario = \"%s\"\nseed = %llu\nimu_grade = \"%s\"\nvector_sampling = \"%s\"\n", c.scenario.c_str(),
+         static_cast<unsigned long long>(c.seed), imuGradeName(c.imu_grade), vectorSamplingName(c.vector_sampling));
   append(s, "latitude_deg = %.9g\nlongitude_deg = %.9g\ndate = \"%04d-%02d-%02d\"\n", c.origin.latitude_deg,
          c.origin.longitude_deg, c.year, c.month, c.day);
-  append(s, "imu_rate_hz = %.9g\ngps_rate_hz = %.9g\nmount_yaw_deg = %.9g\ndecl_anomaly_deg = %.9g\n",
-         c.imu_rate_hz, c.gps_rate_hz, c.mount_yaw_deg, c.decl_anomaly_deg);
+  append(s, "imu_rate_hz = %.9g\ngps_rate_hz = %.9g\nmount_yaw_deg = %.9g\ndecl_anomaly_deg = %.9g\n", c.imu_rate_hz,
+         c.gps_rate_hz, c.mount_yaw_deg, c.decl_anomaly_deg);
   if (c.mount_pitch_deg != 0.0 || c.mount_roll_deg != 0.0) {  // files of runs without them stay as they were
     append(s, "mount_pitch_deg = %.9g\nmount_roll_deg = %.9g\n", c.mount_pitch_deg, c.mount_roll_deg);
   }
-  append(s, "duration_s = %.9g\nstart_utc = \"%04d-%02d-%02dT12:00:00Z\"  # the UTC of t = 0\n",
-         r.scenario.durationS(), c.year, c.month, c.day);
+  append(s, "duration_s = %.9g\nstart_utc = \"%04d-%02d-%02dT12:00:00Z\"  # the UTC of t = 0\n", r.scenario.durationS(),
+         c.year, c.month, c.day);
   append(s, "\n[field]\nwmm_model = \"%s\"\nwmm_declination_deg = %.9g\ndeclination_deg = %.9g\n",
          r.wmm_model_name.c_str(), r.wmm.declination_deg, r.declination_deg);
-  append(s, "wmm_inclination_deg = %.9g\nwmm_total_intensity_uT = %.9g\n", r.wmm.inclination_deg,
-         r.wmm.f_nT / 1000.0);
+  append(s, "wmm_inclination_deg = %.9g\nwmm_total_intensity_uT = %.9g\n", r.wmm.inclination_deg, r.wmm.f_nT / 1000.0);
   const auto triad = [&s](const char* name, const DrawnTriad& t, const char* unit) {
     append(s, "\n[%s]  # %s\n", name, unit);
     append(s, "D = [[%.12g, %.12g, %.12g], [%.12g, %.12g, %.12g], [%.12g, %.12g, %.12g]]\n", t.distortion(0, 0),
@@ -165,10 +162,11 @@ void writeSensorErrors(std::ostream& out, const SimResult& r) {
   triad("mag", r.mag, "uT");
   if (!r.timing.isDefault()) {
     const SensorTiming& t = r.timing;
-    append(s, "\n[timing]  # the magnetometer's own rate (its last sample repeated between), its and the "
-              "accelerometer's lag behind the gyro\n");
-    append(s, "mag_rate_hz = %.9g\nmag_first_sample_s = %.9g\nmag_lag_s = %.9g\naccel_lag_s = %.9g\n",
-           t.mag_rate_hz, t.mag_first_sample_s, t.mag_lag_s, t.accel_lag_s);
+    append(s,
+           "\n[timing]  # the magnetometer's own rate (its last sample repeated between), its and the "
+           "accelerometer's lag behind the gyro\n");
+    append(s, "mag_rate_hz = %.9g\nmag_first_sample_s = %.9g\nmag_lag_s = %.9g\naccel_lag_s = %.9g\n", t.mag_rate_hz,
+           t.mag_first_sample_s, t.mag_lag_s, t.accel_lag_s);
   }
   out << s;
 }

@@ -44,7 +44,7 @@ ImuModel drawPhoneImu(double field_strength_uT, Rng& rng) {
   TriadErrorParams& mag = m.errors.mag;
   mag = consumerMagErrors(field_strength_uT);  // [consumer] ~1 µT residual hard iron, soft iron
   mag.noise_sigma = Vec3::Constant(uniform(rng, PhoneRanges::kMagNoise_uT));  // [datasheets]
-  SensorTiming& t = m.timing;  // [issue 28]
+  SensorTiming& t = m.timing;                                                 // [issue 28]
   t.mag_rate_hz = uniform(rng, PhoneRanges::kMagRate_hz);
   t.mag_first_sample_s = rng.uniform(0.0, 1.0 / t.mag_rate_hz);  // the two clocks' phase
   t.mag_lag_s = uniform(rng, PhoneRanges::kMagLag_s);

@@ -231,9 +231,9 @@ Scenario phoneWalk(Rng& rng, std::string name, std::string description, CarrySpe
     // Walk 15 s, run 80 s along a hall (legs of 15-30 m) or round in circles, walk 15 s.
     const double run_speed = gaitParams(Activity::kRunning).speed_mps;
     s.phases.push_back(indoor(Activity::kWalking, 15.0, room, roomLoops(rng, 15.0, walk_speed, 4.0, 9.0)));
-    s.phases.push_back(indoor(Activity::kRunning, 80.0, room,
-                              course == Course::kCircleRuns ? circles(rng, 80.0, run_speed)
-                                                            : roomLoops(rng, 80.0, run_speed, 15.0, 30.0)));
+    s.phases.push_back(indoor(
+        Activity::kRunning, 80.0, room,
+        course == Course::kCircleRuns ? circles(rng, 80.0, run_speed) : roomLoops(rng, 80.0, run_speed, 15.0, 30.0)));
     s.phases.push_back(indoor(Activity::kWalking, 15.0, room, roomLoops(rng, 15.0, walk_speed, 4.0, 9.0)));
   }
   s.gps = {0.0, 0.0, 10};  // indoors: never a fix
@@ -269,7 +269,8 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
     CarrySpec carry = drawTextingCarry(rng);
     return phoneWalk(rng, name,
                      std::string("A phone held in front, screen up, top raised 20-45 deg, bobbing 2 deg with the "
-                                 "stride (seeded).") + kRoom,
+                                 "stride (seeded).") +
+                         kRoom,
                      std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-calling") {
@@ -277,7 +278,8 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
     CarrySpec carry = drawCallingCarry(rng);
     return phoneWalk(rng, name,
                      std::string("A phone at the left or right ear, top up and back 60-80 deg above level "
-                                 "(seeded).") + kRoom,
+                                 "(seeded).") +
+                         kRoom,
                      std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-swinging") {
@@ -285,7 +287,8 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
     CarrySpec carry = drawSwingingCarry(rng);
     return phoneWalk(rng, name,
                      std::string("A phone in the hand of the hanging arm, swung +-30-60 deg with the gait, 0.62 m "
-                                 "below the shoulder (seeded).") + kRoom,
+                                 "below the shoulder (seeded).") +
+                         kRoom,
                      std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-pocket") {
@@ -293,7 +296,8 @@ Scenario phoneScenario(const std::string& name, std::uint64_t seed) {
     CarrySpec carry = drawPocketCarry(rng);
     return phoneWalk(rng, name,
                      std::string("A phone in a front or back trouser pocket, upright or upside down, left or right "
-                                 "(seeded), turning with the thigh (10 +- 20 deg).") + kRoom,
+                                 "(seeded), turning with the thigh (10 +- 20 deg).") +
+                         kRoom,
                      std::move(carry), Course::kRoomLoops);
   }
   if (name == "phone-running") {

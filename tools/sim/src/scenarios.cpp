@@ -4,12 +4,12 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "headingd/sim/scenario.hpp"
 #include "headingd/sim/calibration_scenarios.hpp"
 #include "headingd/sim/disturbance_scenarios.hpp"
 #include "headingd/sim/motion_scenarios.hpp"
 #include "headingd/sim/phase_builders.hpp"
 #include "headingd/sim/phone_scenarios.hpp"
+#include "headingd/sim/scenario.hpp"
 
 namespace headingd::sim {
 
@@ -164,7 +164,8 @@ Scenario scriptedScenario(std::string name, std::string description, ScriptedOri
 }
 
 double Scenario::durationS() const {
-  return std::accumulate(phases.begin(), phases.end(), 0.0, [](double sum, const Phase& p) { return sum + p.duration_s; });
+  return std::accumulate(phases.begin(), phases.end(), 0.0,
+                         [](double sum, const Phase& p) { return sum + p.duration_s; });
 }
 
 PhaseTime phaseAt(const Scenario& s, double t_s) {
@@ -180,10 +181,21 @@ PhaseTime phaseAt(const Scenario& s, double t_s) {
 }
 
 std::vector<std::string> scenarioNames() {
-  std::vector<std::string> names = {"thesis-declination", "urban-walk", "static-disturbed", "crawl", "run",
-                                    "calib-six-position", "calib-rotation", "calib-rotation-long",
-                                    "shake", "shake-any", "handheld", "slow-rotation", "indoor-static",
-                                    "moving-disturbances", "vehicle-ride"};
+  std::vector<std::string> names = {"thesis-declination",
+                                    "urban-walk",
+                                    "static-disturbed",
+                                    "crawl",
+                                    "run",
+                                    "calib-six-position",
+                                    "calib-rotation",
+                                    "calib-rotation-long",
+                                    "shake",
+                                    "shake-any",
+                                    "handheld",
+                                    "slow-rotation",
+                                    "indoor-static",
+                                    "moving-disturbances",
+                                    "vehicle-ride"};
   for (std::string& name : phoneScenarioNames()) names.push_back(std::move(name));
   return names;
 }

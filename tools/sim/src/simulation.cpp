@@ -40,9 +40,7 @@ Quat mountRotation(const SimConfig& c) {
 
 }  // namespace
 
-const char* vectorSamplingName(VectorSampling v) {
-  return v == VectorSampling::kIntervalMean ? "interval" : "point";
-}
+const char* vectorSamplingName(VectorSampling v) { return v == VectorSampling::kIntervalMean ? "interval" : "point"; }
 
 VectorSampling parseVectorSampling(std::string_view name) {
   if (name == "interval") return VectorSampling::kIntervalMean;
@@ -131,8 +129,7 @@ SimResult simulate(const SimConfig& config, const Scenario& scenario, const core
   std::vector<Vec3> gyro_true(rows), accel_true(rows), mag_true(rows);
   r.field_ned_uT.reserve(rows);
   r.disturbance_ned_uT.reserve(rows);
-  Quat q_ns_previous =
-      (r.trajectory.q_nb_before_start * r.trajectory.q_b_sensor_before_start * r.q_bs).normalized();
+  Quat q_ns_previous = (r.trajectory.q_nb_before_start * r.trajectory.q_b_sensor_before_start * r.q_bs).normalized();
   Vec3 accel_previous = Vec3::Zero(), mag_previous = Vec3::Zero();  // point values at t_{k-1}
   for (std::size_t k = 0; k < rows; ++k) {
     const TruthState& s = states[k];

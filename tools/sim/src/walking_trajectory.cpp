@@ -45,7 +45,7 @@ double turnedHeadingRad(const Scenario& s, double t) {
   for (const Phase& p : s.phases) {
     for (const Turn& turn : p.turns) {
       const double s01 = turn.duration_s > 0.0 ? (t - start - turn.start_s) / turn.duration_s
-                                                : (t >= start + turn.start_s ? 1.0 : 0.0);
+                                               : (t >= start + turn.start_s ? 1.0 : 0.0);
       heading += turn.angle_deg * kRadPerDeg * smootherstep(s01);
     }
     start += p.duration_s;

@@ -93,7 +93,8 @@ ReferenceDelays measureReferenceDelays(const Recording& r, double min_s, double 
   // A 0.5 s moving mean: longer than a stride's turn, shorter than the walk from one part of a
   // room's field to another.
   const auto window = static_cast<std::size_t>(0.5 * r.rate_hz) | 1U;
-  d.mag_s = bestOf(min_s, max_s, [&](double s) { return fieldSpread(r, s, window); }, &d.mag_spread_uT);
+  d.mag_s = bestOf(
+      min_s, max_s, [&](double s) { return fieldSpread(r, s, window); }, &d.mag_spread_uT);
   d.mag_spread_at_zero_uT = fieldSpread(r, 0.0, window);
   d.gyro_s = bestOf(-0.02, 0.02, [&](double s) { return rateMismatch(r, s); });
   d.valid = std::isfinite(d.mag_s) && std::isfinite(d.gyro_s);

@@ -125,8 +125,7 @@ RunScore score(const Recording& r, const std::vector<Quat>& estimates, double op
   return s;
 }
 
-EpisodeScore scoreEpisode(const Recording& r, const std::vector<Quat>& estimates, double settle_s,
-                          double settled_rad) {
+EpisodeScore scoreEpisode(const Recording& r, const std::vector<Quat>& estimates, double settle_s, double settled_rad) {
   EpisodeScore s;
   std::size_t first = r.size(), last = 0;
   for (std::size_t i = 0; i < r.size(); ++i) {

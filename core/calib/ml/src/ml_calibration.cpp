@@ -53,8 +53,7 @@ std::unique_ptr<ceres::FirstOrderFunction> makeFunction(const MlData* data, MlGr
     case MlGradient::kNumericForward:
       return std::make_unique<ceres::NumericDiffFirstOrderFunction<MlValueFunctor, ceres::FORWARD, kMlParameterCount>>(
           new MlValueFunctor(data));
-    case MlGradient::kAdjoint:
-      return std::make_unique<MlAdjointFunction>(data);
+    case MlGradient::kAdjoint: return std::make_unique<MlAdjointFunction>(data);
     case MlGradient::kAutomatic:
     default:
       return std::make_unique<ceres::AutoDiffFirstOrderFunction<MlCostFunctor, kMlParameterCount>>(
@@ -109,8 +108,9 @@ MlProblem prepareMaximumLikelihood(std::span<const core::ImuSample> samples, con
   p.theta_initial = packParameters(initialParameterValues(p.initial, options.initial));
   if (!mlNegativeLogLikelihood<double>(modelFromParameters<double>(p.theta_initial.data()), p.data, p.cost_initial,
                                        &p.residuals_initial)) {
-    throw CalibrationError("the EKF cannot run with the initial estimate (an innovation covariance is not "
-                           "positive definite, the cost is not finite, or the dip has the sign the place rules out)");
+    throw CalibrationError(
+        "the EKF cannot run with the initial estimate (an innovation covariance is not "
+        "positive definite, the cost is not finite, or the dip has the sign the place rules out)");
   }
   return p;
 }
@@ -176,9 +176,7 @@ MlCalibrationResult refineMaximumLikelihood(MlProblem problem, const MlCalibrati
   // The search can run into the wall at |dip| = 90° (the mirror beyond it, ml_likelihood.hpp):
   // from an initial estimate ~90° off in heading the path of steepest descent leads through
   // a vertical field, where heading is free. Stopped there it is no estimate at all.
-  const auto atDipWall = [](const MlParameters& theta) {
-    return std::abs(theta[ml_index::kDip]) > kDipWall_rad;
-  };
+  const auto atDipWall = [](const MlParameters& theta) { return std::abs(theta[ml_index::kDip]) > kDipWall_rad; };
 
   MlParameters theta = out.theta_initial;
   double cost = out.cost_initial;

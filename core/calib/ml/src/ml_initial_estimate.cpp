@@ -28,8 +28,8 @@ core::Mat3 withFloor(const core::Mat3& cov, double sigma_min) {
 MlInitialEstimate estimateInitialParameters(std::span<const core::ImuSample> samples, const MlInitialOptions& options) {
   if (options.stationary_begin + options.stationary_count > samples.size()) {
     throw CalibrationError("stationary segment [" + std::to_string(options.stationary_begin) + ", " +
-                           std::to_string(options.stationary_begin + options.stationary_count) +
-                           ") lies outside the " + std::to_string(samples.size()) + " samples");
+                           std::to_string(options.stationary_begin + options.stationary_count) + ") lies outside the " +
+                           std::to_string(samples.size()) + " samples");
   }
   MlInitialEstimate out;
   out.field_norm_uT = options.field_norm_uT;

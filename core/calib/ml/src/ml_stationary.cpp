@@ -40,7 +40,7 @@ StationaryStatistics stationaryStatistics(std::span<const core::ImuSample> stati
   }
   if (gyro.n < 3) {
     throw CalibrationError("stationary segment has " + std::to_string(gyro.n) +
-                                " usable samples; at least 3 are needed for a covariance");
+                           " usable samples; at least 3 are needed for a covariance");
   }
   StationaryStatistics out;
   out.samples = gyro.n;

@@ -47,11 +47,11 @@ class AccelClipDetector {
   static int slot(int axis, bool negative) { return 2 * axis + (negative ? 1 : 0); }
   void learn();
 
-  std::array<std::array<double, kBins>, 6> counts_{};  // per axis and sign
+  std::array<std::array<double, kBins>, 6> counts_{};       // per axis and sign
   std::array<std::array<double, kBins>, 6> flat_counts_{};  // of them, the flat readings
   std::array<double, 6> clip_from_;
-  Vec3 run_value_ = Vec3::Zero();         // per axis, the value the current flat run started at
-  Vec3 run_s_ = Vec3::Constant(-1.0);     // and how long it has lasted (< 0: none, below 1.5 g)
+  Vec3 run_value_ = Vec3::Zero();      // per axis, the value the current flat run started at
+  Vec3 run_s_ = Vec3::Constant(-1.0);  // and how long it has lasted (< 0: none, below 1.5 g)
   double since_learn_s_ = 0.0;
 };
 

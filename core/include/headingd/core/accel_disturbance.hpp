@@ -37,5 +37,4 @@ class MotionLevelSelector {
   MotionLevel level_ = MotionLevel::kStanding;
 };
 
-
 }  // namespace headingd::core

@@ -18,9 +18,9 @@ struct AttitudeAxes {
 };
 
 struct AttitudeUpdateResult {
-  bool applied = false;  // false: rejected by the innovation gate, or the EKF is still starting
-  double innovation_nis = 0.0;  // rᵀ S⁻¹ r: χ² with the measurement's dimension when all is well
-  Vec3 turn_rad = Vec3::Zero();  // the correction about NED north, east, down
+  bool applied = false;                // false: rejected by the innovation gate, or the EKF is still starting
+  double innovation_nis = 0.0;         // rᵀ S⁻¹ r: χ² with the measurement's dimension when all is well
+  Vec3 turn_rad = Vec3::Zero();        // the correction about NED north, east, down
   double heading_variance_rad2 = 0.0;  // the heading's variance after it (rad²)
 };
 
@@ -111,7 +111,7 @@ class AttitudeEkf {
   bool general_ = true;
   Mat4 P_;
   Eigen::Matrix2d tilt_ = Eigen::Matrix2d::Zero();  // about NED north and east
-  double heading_variance_ = 0.0;                     // about NED down
+  double heading_variance_ = 0.0;                   // about NED down
 };
 
 template <int N>

@@ -18,9 +18,7 @@ class CircularMean {
   double weight() const { return sum_weight_; }
   double mean() const { return std::atan2(sum_sin_, sum_cos_); }
   // Mean resultant length R in [0, 1]: 1 when all angles agree.
-  double resultantLength() const {
-    return sum_weight_ > 0.0 ? std::hypot(sum_cos_, sum_sin_) / sum_weight_ : 0.0;
-  }
+  double resultantLength() const { return sum_weight_ > 0.0 ? std::hypot(sum_cos_, sum_sin_) / sum_weight_ : 0.0; }
   // Circular standard deviation sqrt(-2 ln R) (equals the ordinary one for small spreads).
   double spread() const {
     const double r = resultantLength();

@@ -4,9 +4,9 @@
 // estimator the reference field (strength and dip for the disturbance tests, the whole field
 // for MAU, Khedr et al. 2020) and the WMM declination, so the heading is true heading indoors
 // or without a receiver. Parsing and date choice only: core reads no clock.
+#include <toml++/toml.h>
 #include <optional>
 #include <string>
-#include <toml++/toml.h>
 
 #include "headingd/core/wmm.hpp"
 

@@ -19,24 +19,24 @@
 
 #include "headingd/core/accel_clipping.hpp"
 #include "headingd/core/accel_disturbance.hpp"
-#include "headingd/core/gravity_residual.hpp"
-#include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/attitude_ekf.hpp"
 #include "headingd/core/body_up_axis.hpp"
 #include "headingd/core/estimator_params.hpp"
+#include "headingd/core/gravity_residual.hpp"
 #include "headingd/core/gyro_bias_estimator.hpp"
+#include "headingd/core/gyro_frame_low_pass.hpp"
 #include "headingd/core/heading_corrections.hpp"
 #include "headingd/core/heading_definition.hpp"
 #include "headingd/core/heading_uncertainty.hpp"
-#include "headingd/core/net_turn.hpp"
+#include "headingd/core/imu_sample.hpp"
+#include "headingd/core/mag_disturbance.hpp"
 #include "headingd/core/magnetic_attitude_update.hpp"
+#include "headingd/core/net_turn.hpp"
 #include "headingd/core/quasi_static_field.hpp"
 #include "headingd/core/quasi_static_field_update.hpp"
-#include "headingd/core/imu_sample.hpp"
-#include "headingd/core/vector_delay_estimator.hpp"
-#include "headingd/core/mag_disturbance.hpp"
 #include "headingd/core/sample_gate.hpp"
 #include "headingd/core/turn_blended_low_pass.hpp"
+#include "headingd/core/vector_delay_estimator.hpp"
 #include "headingd/core/vertical_rate_error.hpp"
 
 namespace headingd::core {
@@ -59,7 +59,7 @@ struct EstimatorOutput {
   Vec3 body_up_axis_s = kDocumentedHeadAxis;
   bool body_up_learned = false;
   MotionLevel motion_level = MotionLevel::kStanding;  // activity (§3.1's levels), reported only
-  double accel_disturbance = 0.0;  // d_k, (m/s²)²
+  double accel_disturbance = 0.0;                     // d_k, (m/s²)²
   double gravity_noise_m_s2 = 0.0;  // σ of R_k in this sample's gravity update (gravity_residual.hpp)
   // An axis of this sample read the accelerometer's learned limit (accel_clipping.hpp).
   bool accel_clipped = false;
@@ -70,9 +70,9 @@ struct EstimatorOutput {
   bool at_rest = false;
   bool mag_used = false;
   bool mag_disturbed = false;
-  MagDisturbance mag_disturbance;  // which tests fired
-  double mag_gain = 0.0;             // K of eq. 4.2 this sample
-  double mag_innovation_rad = 0.0;   // ψ_mm - ψ_pred
+  MagDisturbance mag_disturbance;   // which tests fired
+  double mag_gain = 0.0;            // K of eq. 4.2 this sample
+  double mag_innovation_rad = 0.0;  // ψ_mm - ψ_pred
   // How much older than the gyro's end of interval the field sample was taken to be (s): the
   // sample-interval fraction, or the magnetometer's learned delay, plus how long it was held
   // (vector_delay_estimator.hpp).
@@ -92,15 +92,15 @@ struct EstimatorOutput {
 
 struct EstimatorCounters {
   SampleCounters samples;
-  std::uint64_t bias_still_blocks = 0;   // still blocks that measured the gyro bias
-  std::uint64_t mag_no_heading = 0;      // field too close to vertical for a heading
-  std::uint64_t mag_disturbed = 0;       // samples with K = 0 for a disturbed field
+  std::uint64_t bias_still_blocks = 0;     // still blocks that measured the gyro bias
+  std::uint64_t mag_no_heading = 0;        // field too close to vertical for a heading
+  std::uint64_t mag_disturbed = 0;         // samples with K = 0 for a disturbed field
   std::uint64_t mag_heading_restores = 0;  // disturbance onsets that restored ψ_g (eq. 4.4)
-  std::uint64_t state_recoveries = 0;    // a non-finite state was replaced (never expected)
-  std::uint64_t accel_clipped = 0;       // samples with an axis at the accelerometer's learned limit
-  std::uint64_t qsf_mag_periods = 0;     // quasi-static field periods (quasi_static_field.hpp)
-  std::uint64_t qsf_mag_ms = 0;          // time in them, milliseconds
-  std::uint64_t qsf_accel_periods = 0;   // the same for the specific force
+  std::uint64_t state_recoveries = 0;      // a non-finite state was replaced (never expected)
+  std::uint64_t accel_clipped = 0;         // samples with an axis at the accelerometer's learned limit
+  std::uint64_t qsf_mag_periods = 0;       // quasi-static field periods (quasi_static_field.hpp)
+  std::uint64_t qsf_mag_ms = 0;            // time in them, milliseconds
+  std::uint64_t qsf_accel_periods = 0;     // the same for the specific force
   std::uint64_t qsf_accel_ms = 0;
   // Field updates applied and rejected (quasi_static_field_update.hpp, magnetic_attitude_update.hpp).
   std::uint64_t qsf_mag_updates = 0;
@@ -228,17 +228,17 @@ class Estimator {
   HeadingDefinitionSelector heading_definition_;
   MagDisturbanceDetector mag_disturbance_;
   HeadingUncertainty heading_uncertainty_;
-  NetTurn attitude_net_turn_;  // how far the attitude has moved, for heading_uncertainty_
-  VectorDelayEstimator mag_delay_;    // the magnetometer's delay against the gyro
-  VectorDelayEstimator accel_delay_;  // the accelerometer's
-  double mag_seconds_ = 0.0;  // time since the first usable field sample
+  NetTurn attitude_net_turn_;              // how far the attitude has moved, for heading_uncertainty_
+  VectorDelayEstimator mag_delay_;         // the magnetometer's delay against the gyro
+  VectorDelayEstimator accel_delay_;       // the accelerometer's
+  double mag_seconds_ = 0.0;               // time since the first usable field sample
   VerticalRateError vertical_rate_error_;  // the observer's integral term
-  double tilt_seconds_ = 0.0;  // time since the tilt started afresh (start-up, gap)
-  GyroFrame qsf_frame_;  // the frame both detectors carry their samples into
+  double tilt_seconds_ = 0.0;              // time since the tilt started afresh (start-up, gap)
+  GyroFrame qsf_frame_;                    // the frame both detectors carry their samples into
   QuasiStaticFieldDetector qsf_mag_;
   QuasiStaticFieldDetector qsf_accel_;
   Vec3 qsf_last_mag_uT_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // to tell a held sample
-  double qsf_mag_dt_s_ = 0.0;  // since the last new field sample
+  double qsf_mag_dt_s_ = 0.0;                                                        // since the last new field sample
   double qsf_field_interval_s_ = 0.0;  // between the last two new field samples
   QuasiStaticFieldUpdate qsf_mag_update_;
   MagneticAttitudeUpdate mau_;

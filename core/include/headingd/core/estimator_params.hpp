@@ -427,7 +427,7 @@ struct EstimatorParams {
   // below bias_max_rad_s, and the directions of ā and of the field turn no faster than
   // rest_max_turn_rate_rad_s.
   double rest_gyro_threshold_rad_s = 0.01;  // 0.6 deg/s RMS
-  double rest_accel_threshold_m_s2 = 0.5;  // RMS
+  double rest_accel_threshold_m_s2 = 0.5;   // RMS
   // Upper bound of the gyro's rest threshold when it follows the learned noise floor.
   double rest_gyro_max_threshold_rad_s = 0.5;
   // A block is judged after rest_min_duration_s, and again every as long while the rest
@@ -506,10 +506,10 @@ struct EstimatorParams {
   // 50 Hz; over seeds 1-30 1.62 / 1.76 → 1.64 / 1.80°), mems 100 Hz +0.03°, every other class
   // within ±0.02° (urban walk, §6.3 runs within ±0.01°); it comes from the still block's
   // looser mean-rate bound (with that bound at 0.1 + the turn, and the prior at half the clamp,
-  // the class is back at 1.62 / 1.76° over 30 seeds). The shared phone groups nexus5 / nexus5_magnets / iphone / iphone_magnets
-  // 1.52 / 4.87 / 2.59 / 3.39° (were 1.52 / 4.83 / 2.57 / 3.39°), BROAD unchanged (1.79 /
-  // 1.25°). The prior at half the clamp instead (0.1 rad/s per axis) moved no class by more
-  // than 0.02° but lifted the heading sigma of 6 classes above 97 % (20 left within, not 26).
+  // the class is back at 1.62 / 1.76° over 30 seeds). The shared phone groups nexus5 / nexus5_magnets / iphone /
+  // iphone_magnets 1.52 / 4.87 / 2.59 / 3.39° (were 1.52 / 4.83 / 2.57 / 3.39°), BROAD unchanged (1.79 / 1.25°). The
+  // prior at half the clamp instead (0.1 rad/s per axis) moved no class by more than 0.02° but lifted the heading sigma
+  // of 6 classes above 97 % (20 left within, not 26).
   double bias_max_rad_s = 0.2;
 
   // --- Quasi-static fields (quasi_static_field.hpp; Renaudin & Combettes 2014 §5) ---

@@ -45,7 +45,7 @@ class GaitMountYawEstimator {
   void restart();
 
   bool hasEstimate() const { return walking_seconds_ >= 10.0; }
-  double mountYawRad() const;   // 0 before there is an estimate
+  double mountYawRad() const;  // 0 before there is an estimate
   // Uncertainty of mountYawRad (∞ before there is an estimate), by batch means: the walk is
   // cut into blocks of kBlockSeconds, each block gives its own principal axis, and the
   // spread of those over √(blocks) is the standard error. Step samples are strongly

@@ -119,9 +119,9 @@ class GyroBiasEstimator {
   void updateFromWindow();
 
   LowPass<Eigen::Matrix<double, 2, 3>> horizontal_rows_;  // R̄_h, updated once a window
-  std::array<TurnSpread, 2> spread_;                       // about north, about east
+  std::array<TurnSpread, 2> spread_;                      // about north, about east
   double window_s_ = 0.0;
-  double measuring_s_ = 0.0;  // of the window, the time whose turns measure the bias
+  double measuring_s_ = 0.0;     // of the window, the time whose turns measure the bias
   double since_update_s_ = 0.0;  // since the last in-motion update (see updateFromWindow)
   Eigen::Vector2d window_turn_rad_ = Eigen::Vector2d::Zero();
   double rest_seconds_ = 0.0;

@@ -1,8 +1,8 @@
 #pragma once
 // Low-pass of a body-frame vector (accelerometer, magnetometer) in a gyro-integrated frame.
 //
-// For the accelerometer, before the EKF's gravity update. Why: the EKF of Henriksson ch. 3 compares each raw sample with gravity. A body that
-// accelerates (a person's steps, a hand moving a device around) adds accelerations that
+// For the accelerometer, before the EKF's gravity update. Why: the EKF of Henriksson ch. 3 compares each raw sample
+// with gravity. A body that accelerates (a person's steps, a hand moving a device around) adds accelerations that
 // average to zero over a few seconds but not over one sample; the R levels of §3.1 only
 // trust the sample less. Filtering in the body frame would smear gravity whenever the body
 // turns, so the samples are first rotated into a frame that turns with the gyro alone
@@ -56,8 +56,8 @@ class GyroFrameLowPass {
  private:
   double time_constant_s_;
   GyroFrameStart start_;
-  LowPass<Vec3> filtered_;  // in the current body axes
-  double seconds_ = 0.0;    // of samples taken since the start (kRunningMean)
+  LowPass<Vec3> filtered_;    // in the current body axes
+  double seconds_ = 0.0;      // of samples taken since the start (kRunningMean)
   bool handed_over_ = false;  // the running mean has given way to the low-pass (kRunningMean)
 };
 

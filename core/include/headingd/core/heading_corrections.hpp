@@ -44,7 +44,9 @@ class HeadingCorrectionLog {
   double oldestSumRad() const { return age_s_[0] >= age_s_[1] ? sum_rad_[0] : sum_rad_[1]; }
   double oldestAgeS() const { return age_s_[0] >= age_s_[1] ? age_s_[0] : age_s_[1]; }
   // The integral term's value when the older sum restarted.
-  double oldestRateRadS() const { return age_s_[0] >= age_s_[1] ? rate_at_restart_rad_s_[0] : rate_at_restart_rad_s_[1]; }
+  double oldestRateRadS() const {
+    return age_s_[0] >= age_s_[1] ? rate_at_restart_rad_s_[0] : rate_at_restart_rad_s_[1];
+  }
   // Both restart (start-up, gap), staggered by half a period (eq. 4.4b's n + N/2).
   void restart(double rate_rad_s = 0.0) {
     sum_rad_[0] = sum_rad_[1] = 0.0;

@@ -22,14 +22,14 @@ enum DeclinationSource : unsigned { kDeclNone = 0, kDeclWmm = 1, kDeclGps = 2, k
 const char* declinationSourceName(unsigned sources);
 
 struct HeadingOutput {
-  EstimatorOutput attitude;        // the sensor's attitude, magnetic north
-  double heading_mag_rad = 0.0;    // sensor x-axis heading from magnetic north
+  EstimatorOutput attitude;      // the sensor's attitude, magnetic north
+  double heading_mag_rad = 0.0;  // sensor x-axis heading from magnetic north
   double declination_rad = 0.0;
   double declination_sigma_rad = 0.0;
   unsigned declination_sources = kDeclNone;
-  double mount_yaw_rad = 0.0;      // sensor turned from body about down (gait_mount_yaw.hpp)
+  double mount_yaw_rad = 0.0;  // sensor turned from body about down (gait_mount_yaw.hpp)
   double mount_yaw_sigma_rad = 0.0;
-  double heading_true_rad = 0.0;   // the body's heading from geographic north
+  double heading_true_rad = 0.0;  // the body's heading from geographic north
   // 1-sigma of heading_mag_rad (the estimator's heading_sigma_rad), and of heading_true_rad:
   // that with the mounting yaw's and the declination's (∞ while no declination is known).
   double heading_mag_sigma_rad = 0.0;

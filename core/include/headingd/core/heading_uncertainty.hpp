@@ -103,17 +103,17 @@ class HeadingUncertainty {
   void showInnovation(double innovation_rad, double dt_s);
 
   HeadingUncertaintyParams p_;
-  ExpDecay field_decay_;            // p's, per IMU sample
-  ExpDecay field_sample_decay_;     // the innovations' spread's average, per field sample
-  ExpDecay innovation_mean_decay_;  // the innovations' one-second mean
+  ExpDecay field_decay_;                         // p's, per IMU sample
+  ExpDecay field_sample_decay_;                  // the innovations' spread's average, per field sample
+  ExpDecay innovation_mean_decay_;               // the innovations' one-second mean
   Eigen::Matrix4d P_ = Eigen::Matrix4d::Zero();  // over (e, b, a, p)
   // The filter that has seen the innovations: its estimate of (e, b, a, p) and covariance.
   Eigen::Vector4d shown_x_ = Eigen::Vector4d::Zero();
   Eigen::Matrix4d shown_P_ = Eigen::Matrix4d::Zero();
   double innovation_noise_variance_ = 0.0;  // per sample, about the one-second mean
   bool known_ = false;
-  bool rate_started_ = false;   // P_(1, 1) has been set from the bias filter
-  bool field_started_ = false;  // a's and p's variances have been set
+  bool rate_started_ = false;         // P_(1, 1) has been set from the bias filter
+  bool field_started_ = false;        // a's and p's variances have been set
   double innovation_seen_s_ = 0.0;    // of innovations observed
   double innovation_mean_rad_ = 0.0;  // over about a second
   double innovation_variance_ = 0.0;  // of that mean, over field_correlation_s

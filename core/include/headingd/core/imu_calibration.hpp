@@ -39,21 +39,21 @@ struct MagCalibration {
   Vec3 offset_uT = Vec3::Zero();
   double field_norm_uT = 0.0;  // |m_b| after calibration; 0 = not stated
   FieldNormSource field_norm_source = FieldNormSource::kData;
-  std::string field_norm_detail;    // e.g. "WMM-2025 at 59.33 N 18.07 E on 2026-06-01"
-  std::optional<double> dip_rad;    // inclination of the field, positive down
+  std::string field_norm_detail;  // e.g. "WMM-2025 at 59.33 N 18.07 E on 2026-06-01"
+  std::optional<double> dip_rad;  // inclination of the field, positive down
   std::optional<Vec3> noise_sigma_uT;
 };
 
 // What the calibration came from and how good it looked. Informative: nothing here
 // changes the correction.
 struct CalibrationProvenance {
-  std::string method;      // "thesis", "ellipsoid", "ml"
+  std::string method;  // "thesis", "ellipsoid", "ml"
   std::string source_file;
   std::int64_t first_sample = 0;  // rows of the source used, [first, end)
   std::int64_t end_sample = 0;
-  std::string created;     // free text, e.g. tool and version
+  std::string created;  // free text, e.g. tool and version
   std::optional<double> residual_rms_uT;
-  std::optional<double> coverage;          // fraction of the sphere, 0..1
+  std::optional<double> coverage;  // fraction of the sphere, 0..1
   std::optional<double> condition_number;
 };
 

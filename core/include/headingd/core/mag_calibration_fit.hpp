@@ -51,7 +51,7 @@ class MagCalibrationFit {
   bool update(const Vec3& raw_uT, const Vec3& calibrated_uT, double dt_s);
 
   bool calibrationInUse() const { return calibrated_in_use_; }
-  std::uint64_t setAside() const { return set_aside_; }  // calibrated → raw switches
+  std::uint64_t setAside() const { return set_aside_; }    // calibrated → raw switches
   std::uint64_t takenBack() const { return taken_back_; }  // raw → calibrated switches
   // For diagnostics: the low-passed strengths (µT) and their relative RMS fluctuation.
   double rawStrength() const { return raw_.mean.value(); }

@@ -51,15 +51,15 @@
 namespace headingd::core {
 
 struct MagDisturbanceParams {
-  double time_constant_s;      // low-pass of strength and dip (§4.2: about 3 s)
+  double time_constant_s;  // low-pass of strength and dip (§4.2: about 3 s)
   double max_norm_deviation_uT;
   double max_dip_deviation_rad;
   double max_reference_norm_deviation_uT;  // |low-passed ‖m‖ - F_WMM|
   double max_reference_dip_deviation_rad;  // |low-passed dip - I_WMM|
   double back_to_before_s;                 // 0: the low-passes alone decide (see above)
   double residual_hard_iron_uT = 0.0;      // per rad turned: the strength test's allowance
-  double learn_first_s = 0.0;  // clean this long: the first learned field (0: nothing learned)
-  double learn_new_s = 0.0;    // homogeneous this long: a different field is learned
+  double learn_first_s = 0.0;              // clean this long: the first learned field (0: nothing learned)
+  double learn_new_s = 0.0;                // homogeneous this long: a different field is learned
 };
 
 // Which tests found the sample disturbed (several may).

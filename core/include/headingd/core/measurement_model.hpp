@@ -12,9 +12,9 @@ namespace headingd::core {
 
 // The estimate a model is linearised about.
 struct NavigationState {
-  Quat q_nb = Quat::Identity();          // sensor to NED (the heading from magnetic north)
-  Vec3 gyro_bias_rad_s = Vec3::Zero();    // what the gyro reads at rest, sensor axes
-  Vec3 accel_bias_m_s2 = Vec3::Zero();    // what the accelerometer reads beyond the specific force
+  Quat q_nb = Quat::Identity();         // sensor to NED (the heading from magnetic north)
+  Vec3 gyro_bias_rad_s = Vec3::Zero();  // what the gyro reads at rest, sensor axes
+  Vec3 accel_bias_m_s2 = Vec3::Zero();  // what the accelerometer reads beyond the specific force
 };
 
 // The error state: 9 numbers. The attitude's error is a turn about the NED axes,

@@ -24,7 +24,7 @@ class NetTurn {
   ExpDecay decay_;
   double step_rad_;
   bool started_ = false;
-  Quat mean_ = Quat::Identity();        // the attitude low-passed (normalised)
+  Quat mean_ = Quat::Identity();          // the attitude low-passed (normalised)
   Quat last_counted_ = Quat::Identity();  // the mean when the last step was counted
 };
 

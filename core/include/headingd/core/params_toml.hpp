@@ -1,9 +1,9 @@
 #pragma once
 // EstimatorParams from the [estimator] table of a TOML document. Parsing only: the caller
 // reads the file, so core stays free of I/O.
+#include <toml++/toml.h>
 #include <string>
 #include <string_view>
-#include <toml++/toml.h>
 #include <vector>
 
 #include "headingd/core/config_error.hpp"

@@ -106,8 +106,8 @@ class QuasiStaticFieldDetector {
   const Entry& at(std::size_t i) const { return ring_[(head_ + i) & (ring_.size() - 1)]; }
 
   QuasiStaticFieldParams p_;
-  double t_s_ = 0.0;                            // of field samples since the restart
-  std::vector<Entry> ring_;                     // the window, oldest at head_; grows to fit
+  double t_s_ = 0.0;         // of field samples since the restart
+  std::vector<Entry> ring_;  // the window, oldest at head_; grows to fit
   std::size_t head_ = 0;
   std::size_t size_ = 0;
   std::size_t pushes_since_recompute_ = 0;

@@ -42,9 +42,9 @@
 namespace headingd::core {
 
 struct QuasiStaticFieldUpdateParams {
-  double noise_uT;  // the field's white noise per axis and sample (0: the update is off)
+  double noise_uT;               // the field's white noise per axis and sample (0: the update is off)
   double residual_hard_iron_uT;  // per radian turned since the period's start, added to the noise
-  double max_nis;   // the innovation gate (χ², 3 degrees of freedom)
+  double max_nis;                // the innovation gate (χ², 3 degrees of freedom)
 };
 
 class QuasiStaticFieldUpdate {
@@ -71,10 +71,10 @@ class QuasiStaticFieldUpdate {
   QuasiStaticFieldUpdateParams p_;
   bool has_reference_ = false;
   Vec3 reference_ned_uT_ = Vec3::Zero();
-  Quat start_attitude_ = Quat::Identity();  // the sensor's at the period's start
+  Quat start_attitude_ = Quat::Identity();    // the sensor's at the period's start
   Quat start_gyro_frame_ = Quat::Identity();  // its attitude in the gyro's frame then
   double heading_corrected_rad_ = 0.0;        // turned by this update since the start
-  double drift_sigma_rad_ = 0.0;            // of the heading's change since then
+  double drift_sigma_rad_ = 0.0;              // of the heading's change since then
   FieldUpdateCounters counters_;
 };
 

@@ -17,8 +17,8 @@
 namespace headingd::core {
 
 struct ReferenceVectorModel {
-  Vec3 reference_ned;         // r: µT for a field, m/s² for a specific force
-  double noise_sigma;         // the measurement's white noise per axis, same unit
+  Vec3 reference_ned;            // r: µT for a field, m/s² for a specific force
+  double noise_sigma;            // the measurement's white noise per axis, same unit
   bool with_accel_bias = false;  // the accelerometer's measurement: its bias is part of h
 
   Linearised<3> linearise(const NavigationState& x, const Vec3& measured) const;

@@ -102,8 +102,9 @@ class RestDetector {
   const RestBlock& block() const { return block_; }
 
  private:
-  // One vector's low-passed mean and the mean squared deviation of the samples from it. Both low-passes begin as running means (weight
-  // dt/t until t reaches the time constant), so the first samples do not weigh more than later ones.
+  // One vector's low-passed mean and the mean squared deviation of the samples from it. Both low-passes begin as
+  // running means (weight dt/t until t reaches the time constant), so the first samples do not weigh more than later
+  // ones.
   struct SteadyVector {
     explicit SteadyVector(double time_constant_s) : alpha(time_constant_s) {}
     double update(const Vec3& v, double dt_s);  // returns the RMS deviation
@@ -131,7 +132,7 @@ class RestDetector {
     Vec3 rotation;  // ∫ ω̄ dt since the block began
     Vec3 accel_direction;
     Vec3 mag_direction;  // zero without the field
-    double gyro_rms;  // RMS deviations of the three vectors there
+    double gyro_rms;     // RMS deviations of the three vectors there
     double accel_rms;
     double mag_rms;  // zero without the field
   };
@@ -174,7 +175,7 @@ class RestDetector {
   NoiseFloor accel_floor_;  // kept through the field's absences (mag_ restarts)
   NoiseFloor mag_floor_;
   bool at_rest_ = false;
-  double steady_s_ = 0.0;  // how long the steady tests have held
+  double steady_s_ = 0.0;              // how long the steady tests have held
   double provisional_gyro_rms_ = 0.0;  // largest gyro RMS of the stretch before the floor was known
   double provisional_min_rms_ = std::numeric_limits<double>::infinity();  // and its smallest, once settled
   // Time constants of steadiness before a block may start: one at start-up (the running means
@@ -186,10 +187,10 @@ class RestDetector {
   double block_time_s_ = 0.0;
   Vec3 block_rotation_ = Vec3::Zero();  // ∫ ω̄ dt over the block
   Block current_;
-  double next_judgement_s_ = 0.0;  // block time of the current block's next judgement
-  int block_counted_ = 0;          // how often the current block has counted (0: not yet)
-  bool counted_with_mag_ = false;  // the field saw its last counted version
-  RestBlock before_growth_;        // the block as it counted before it last grew
+  double next_judgement_s_ = 0.0;   // block time of the current block's next judgement
+  int block_counted_ = 0;           // how often the current block has counted (0: not yet)
+  bool counted_with_mag_ = false;   // the field saw its last counted version
+  RestBlock before_growth_;         // the block as it counted before it last grew
   bool pending_is_growth_ = false;  // the pending block is a grown one (its fallback: before_growth_)
   RestBlock block_;
   // The last still block while the steadiness after it is not yet a confirmation window long.

@@ -8,14 +8,14 @@
 namespace headingd::core {
 
 enum class SampleVerdict {
-  kAccepted,        // use it, integrating the gyro over the returned period
-  kFirst,           // first usable sample: starts the time base, nothing to integrate yet
-  kGap,             // time jumped forward by more than the gap limit: restart the time base
-  kClockJump,       // time jumped backwards by more than the gap limit: restart the time base
-  kDuplicateTime,   // same timestamp as the last sample: skipped
-  kBackwardsTime,   // slightly older than the last sample: skipped
-  kNonFinite,       // NaN/Inf in gyro or accelerometer: skipped
-  kOutOfRange,      // a gyro or accelerometer reading no sensor of this kind can give: skipped
+  kAccepted,       // use it, integrating the gyro over the returned period
+  kFirst,          // first usable sample: starts the time base, nothing to integrate yet
+  kGap,            // time jumped forward by more than the gap limit: restart the time base
+  kClockJump,      // time jumped backwards by more than the gap limit: restart the time base
+  kDuplicateTime,  // same timestamp as the last sample: skipped
+  kBackwardsTime,  // slightly older than the last sample: skipped
+  kNonFinite,      // NaN/Inf in gyro or accelerometer: skipped
+  kOutOfRange,     // a gyro or accelerometer reading no sensor of this kind can give: skipped
 };
 
 const char* sampleVerdictName(SampleVerdict v);

@@ -5,15 +5,15 @@
 // estimator's parameters, the calibration file and the drivers' [can] and [gps] tables; each
 // owner reads its own table from the toml::table it was handed, parsed once.
 // No I/O: whether a path names a readable file is for the caller (fail() says where).
+#include <toml++/toml.h>
 #include <cstdint>
 #include <initializer_list>
 #include <string>
 #include <string_view>
-#include <toml++/toml.h>
 #include <vector>
 
 #include "headingd/core/config_error.hpp"
-#include "headingd/core/quaternion.hpp"   // Vec3, Mat3
+#include "headingd/core/quaternion.hpp"  // Vec3, Mat3
 
 namespace headingd::core {
 

@@ -25,9 +25,9 @@
 //
 // Why two filters blended and not one whose τ follows the turning: a single filter whose
 // time constant changes weights each sample by when it came, and when the changes follow the
-// motion those weights follow its accelerations, which then no longer average out (the low-pass's output on BROAD's trial 30, fast rotations, computed offline
-// with the optical vertical: 3.0° RMS from the vertical at a fixed 2 s, 4.3° with τ following
-// the turning, 1.7° blended).
+// motion those weights follow its accelerations, which then no longer average out (the low-pass's output on BROAD's
+// trial 30, fast rotations, computed offline with the optical vertical: 3.0° RMS from the vertical at a fixed 2 s, 4.3°
+// with τ following the turning, 1.7° blended).
 //
 // The blend's weight also falls as the body's whole rate grows beyond ω_max, to nothing at
 // 2 ω_max: the gyro frame's errors (scale, misalignment) grow with the rotation, and BROAD's
@@ -49,8 +49,11 @@ class SteadyTurnWeight {
   // average_time_constant_s: of the rates' low-passes (τ₀); full_turn_rate_rad_s: Ω_full (0:
   // w is always 0); max_rate_rad_s: ω_max.
   SteadyTurnWeight(double average_time_constant_s, double full_turn_rate_rad_s, double max_rate_rad_s)
-      : full_rate_(full_turn_rate_rad_s), max_rate_(max_rate_rad_s), vertical_rate_(average_time_constant_s),
-        rate_(average_time_constant_s), time_constant_s_(average_time_constant_s) {}
+      : full_rate_(full_turn_rate_rad_s),
+        max_rate_(max_rate_rad_s),
+        vertical_rate_(average_time_constant_s),
+        rate_(average_time_constant_s),
+        time_constant_s_(average_time_constant_s) {}
 
   // gyro_rad_s: this sample's rate in sensor axes, bias taken off; down_s: NED down in sensor
   // axes (the attitude's); stepping: the body walks or runs (motion level above standing),

@@ -29,10 +29,10 @@
 namespace headingd::core {
 
 struct VectorDelayParams {
-  double max_delay_s = 0.1;        // |Δ̂| at most this; 0: not estimated, nor the held time
-  double time_constant_s = 300.0;  // the sums forget with this time constant
+  double max_delay_s = 0.1;            // |Δ̂| at most this; 0: not estimated, nor the held time
+  double time_constant_s = 300.0;      // the sums forget with this time constant
   double apply_below_sigma_s = 0.005;  // Δ̂ counts once σ(Δ̂) is below this
-  double min_span_s = 0.0;  // a regression's interval is at least this long (0: one fresh sample)
+  double min_span_s = 0.0;             // a regression's interval is at least this long (0: one fresh sample)
   // A reading equal to the last is the sensor's last update repeated (a magnetometer slower
   // than the IMU); false: every reading is fresh (an accelerometer at the IMU's rate, whose
   // readings at rest may repeat to the last bit).
@@ -72,9 +72,9 @@ class VectorDelayEstimator {
  private:
   VectorDelayParams p_;
   bool has_previous_ = false;
-  Vec3 start_rate_ = Vec3::Zero();      // the rate when the chain started, turned by the gyro since
-  Vec3 predicted_ = Vec3::Zero();       // the last fresh sample turned by the gyro since
-  double chain_s_ = 0.0;                // how long ago that sample was
+  Vec3 start_rate_ = Vec3::Zero();  // the rate when the chain started, turned by the gyro since
+  Vec3 predicted_ = Vec3::Zero();   // the last fresh sample turned by the gyro since
+  double chain_s_ = 0.0;            // how long ago that sample was
   Vec3 last_seen_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // repeats_are_holds only
   double held_s_ = 0.0;
   double sum_xy_ = 0.0, sum_xx_ = 0.0, sum_yy_ = 0.0, count_ = 0.0;

@@ -69,8 +69,8 @@ class VerticalRateError {
   double time_constant_s_;           // τ_i; 0: off
   double observer_time_constant_s_;  // τ
   double max_turn_rad_s_;
-  double max_reference_age_s_;       // 0: no fix needed
-  double max_set_aside_share_;       // 0: a fix needed
+  double max_reference_age_s_;  // 0: no fix needed
+  double max_set_aside_share_;  // 0: a fix needed
   double settle_s_;
   double steady_cos_;  // cos of mag_rate_error_steady_heading_rad
   double max_rate_rad_s_;

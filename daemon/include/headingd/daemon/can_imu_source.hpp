@@ -56,7 +56,7 @@ class CanImuSource final : public AsioSource<can::AssemblerCounters> {
   std::int64_t flush_age_ns_ = 0;  // can/epoch_flush.hpp
   std::unique_ptr<can::SocketCanReceiver> receiver_;
   std::unique_ptr<recording::CanStreamRecorder> recorder_;  // null: not recording
-  WallToMonotonic wall_to_mono_;  // io thread; its counts for STATUS below
+  WallToMonotonic wall_to_mono_;                            // io thread; its counts for STATUS below
   std::atomic<std::uint64_t> clock_steps_{0}, future_stamps_{0};
 };
 

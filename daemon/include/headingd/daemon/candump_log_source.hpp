@@ -91,10 +91,10 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
   std::unique_ptr<can::ImuFrameCodec> codec_;
   std::unique_ptr<can::EpochAssembler> assembler_;
   std::int64_t flush_age_ns_ = 0;
-  std::vector<can::CanFrame> frames_;   // in file order, outliers left out
-  std::vector<std::int64_t> play_ns_;   // per frame: its time on the playback axis (log_frame_times.hpp)
+  std::vector<can::CanFrame> frames_;  // in file order, outliers left out
+  std::vector<std::int64_t> play_ns_;  // per frame: its time on the playback axis (log_frame_times.hpp)
   can::CandumpCounters reader_counters_;
-  bool end_missing_ = false;            // the gzip stream ended before its trailer
+  bool end_missing_ = false;  // the gzip stream ended before its trailer
   std::uint64_t time_outlier_frames_ = 0;
   std::uint64_t time_steps_ = 0;
   std::size_t next_frame_ = 0;

@@ -21,10 +21,10 @@ namespace headingd::daemon {
 // [realtime]: real-time by default; each setting the system refuses is said once and the
 // daemon runs on without it (realtime.hpp).
 struct RealtimeConfig {
-  int sched_fifo_priority = 50;    // 0 = normal scheduling; 1..99 = SCHED_FIFO for the estimator thread
-  int driver_fifo_priority = 55;   // the same for the threads of the sources that read at real-time pace
-  std::vector<int> cpu_affinity;   // empty = any CPU (the estimator thread)
-  bool lock_memory = true;         // mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT)
+  int sched_fifo_priority = 50;   // 0 = normal scheduling; 1..99 = SCHED_FIFO for the estimator thread
+  int driver_fifo_priority = 55;  // the same for the threads of the sources that read at real-time pace
+  std::vector<int> cpu_affinity;  // empty = any CPU (the estimator thread)
+  bool lock_memory = true;        // mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT)
 };
 
 // LcmPublisher::kDefaultQueueBytes (daemon.cpp checks that they agree).
@@ -45,9 +45,9 @@ struct LcmConfig {
 };
 
 struct LogConfig {
-  std::string level = "info";  // trace, debug, info, warn, error, critical, off
-  std::string file;            // "" = stderr only; else also this file (reopened on SIGHUP)
-  int repeat_burst = 5;        // messages of one kind logged before suppression starts
+  std::string level = "info";       // trace, debug, info, warn, error, critical, off
+  std::string file;                 // "" = stderr only; else also this file (reopened on SIGHUP)
+  int repeat_burst = 5;             // messages of one kind logged before suppression starts
   double repeat_interval_s = 10.0;  // ... per this interval; the suppressed count is logged
 };
 
@@ -58,10 +58,10 @@ struct DaemonConfig {
   double rate_hz = 100.0;
   double imu_timeout_s = 0.5;
   double status_period_s = 1.0;
-  bool console_status = false;  // one status line per status period on stdout
-  bool publish_on_imu = false;  // [daemon] publish = "imu": also publish as each IMU sample arrives
-  std::string wmm_path;         // World Magnetic Model coefficients ("" = none)
-  std::string calibration_path; // IMU calibration (headingd-calibrate --out; "" = none), re-read on SIGHUP
+  bool console_status = false;   // one status line per status period on stdout
+  bool publish_on_imu = false;   // [daemon] publish = "imu": also publish as each IMU sample arrives
+  std::string wmm_path;          // World Magnetic Model coefficients ("" = none)
+  std::string calibration_path;  // IMU calibration (headingd-calibrate --out; "" = none), re-read on SIGHUP
   // [place]: where the WMM is evaluated until a GPS fix. The daemon fills in the date at
   // start-up when the table gives none (Daemon::Daemon), so a recording replays it exactly.
   std::optional<core::ConfiguredPlace> place;

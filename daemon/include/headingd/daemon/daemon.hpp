@@ -16,10 +16,10 @@
 #include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/daemon/recording_files.hpp"
-#include "headingd/daemon/source_registry.hpp"
 #include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
+#include "headingd/daemon/source_registry.hpp"
 #include "headingd/daemon/systemd_notify.hpp"
 
 namespace headingd::daemon {
@@ -68,7 +68,8 @@ class Daemon {
   std::vector<std::unique_ptr<Source>> sources_;
   SystemdNotifier notifier_;
   std::unique_ptr<RealtimeSettings> realtime_;
-  Doorbell doorbell_;  // [daemon] publish = "imu": the IMU rings wake the estimator  // [realtime], for the process and each thread
+  Doorbell doorbell_;  // [daemon] publish = "imu": the IMU rings wake the estimator  // [realtime], for the process and
+                       // each thread
   std::unique_ptr<LcmPublisher> publisher_;
   std::unique_ptr<NmeaOutServer> nmea_out_;  // [nmea_out] (null: off); stopped after the loop
   std::unique_ptr<EstimatorLoop> loop_;

@@ -4,12 +4,12 @@
 // the LCM sender. A counter the producers bump, on which the consumer sleeps (a futex)
 // until it changes (or a deadline passes). ring() never blocks and never allocates: one
 // atomic add and one FUTEX_WAKE system call.
-#include <atomic>
-#include <cstdint>
-#include <ctime>
 #include <linux/futex.h>
 #include <sys/syscall.h>
 #include <unistd.h>
+#include <atomic>
+#include <cstdint>
+#include <ctime>
 
 namespace headingd::daemon {
 

@@ -19,20 +19,19 @@
 #include <vector>
 
 #include "headingd/attitude_t.hpp"
+#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/core/imu_then_gps_order.hpp"
-#include "headingd/core/calibrated_imu_stream.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/latency_histogram.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
 #include "headingd/daemon/lcm_publisher.hpp"
-#include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/daemon/nmea_out_sentences.hpp"
-#include "headingd/daemon/repeat_limiter.hpp"
-#include "headingd/daemon/ring_entries.hpp"
+#include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/recorder.hpp"
-#include "headingd/recording/stream_recorders.hpp"
+#include "headingd/daemon/repeat_limiter.hpp"
+#include "headingd/daemon/ring_entries.hpp"
 #include "headingd/daemon/sample_ring.hpp"
 #include "headingd/daemon/source.hpp"
 #include "headingd/daemon/status_builder.hpp"
@@ -40,6 +39,7 @@
 #include "headingd/gps_t.hpp"
 #include "headingd/heading_t.hpp"
 #include "headingd/imu_t.hpp"
+#include "headingd/recording/stream_recorders.hpp"
 #include "headingd/status_t.hpp"
 
 namespace headingd::daemon {

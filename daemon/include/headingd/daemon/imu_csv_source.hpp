@@ -27,7 +27,7 @@ struct ImuCsvSourceConfig : SourceConfig {
   std::string imu_csv_path;  // BROAD format, plain or gzip (drivers/files imu_csv.hpp)
   std::string nmea_path;     // optional GPS capture on the IMU time axis ("" = none)
   double nmea_first_epoch_t_s = 0.0;
-  double speed = 1.0;        // play speed, 1 = real time
+  double speed = 1.0;  // play speed, 1 = real time
   double start_delay_s = 0.0;
   AtEnd at_end = AtEnd::kStay;
   // false: samples keep the file's own time column (what headingd-replay sees, any speed).

@@ -63,8 +63,8 @@ class LcmPublisher {
   void stop();
 
   // One producer thread. True when the message is queued (sent, inline); false (and counted)
-  // when it cannot be encoded, the queue is full or, inline, LCM refused it. `sample_arrival_ns`: the newest IMU sample's
-  // arrival (CLOCK_MONOTONIC), whose age at send is measured; kNoSample for none.
+  // when it cannot be encoded, the queue is full or, inline, LCM refused it. `sample_arrival_ns`: the newest IMU
+  // sample's arrival (CLOCK_MONOTONIC), whose age at send is measured; kNoSample for none.
   template <class Message>
   bool publish(const std::string& channel, const Message& message, std::int64_t sample_arrival_ns = kNoSample) {
     const int size = message.getEncodedSize();
@@ -133,10 +133,10 @@ class LcmPublisher {
   std::atomic<bool> stopping_{false};
   std::thread sender_;
 
-  std::vector<std::uint8_t> record_;  // the producer's
-  RepeatLimiter queue_full_log_;      // the producer's
-  std::uint64_t queue_full_ = 0;      // the producer's
-  std::string channel_;               // the sender's
+  std::vector<std::uint8_t> record_;   // the producer's
+  RepeatLimiter queue_full_log_;       // the producer's
+  std::uint64_t queue_full_ = 0;       // the producer's
+  std::string channel_;                // the sender's
   std::vector<std::uint8_t> payload_;  // the sender's
 
   std::atomic<std::uint64_t> published_{0};

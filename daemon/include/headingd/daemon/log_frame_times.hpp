@@ -21,16 +21,16 @@
 namespace headingd::daemon {
 
 struct LogFrameTimes {
-  static constexpr std::int64_t kJumpNs = 1'000'000'000;           // 1 s
-  static constexpr std::int64_t kLongestGapNs = 60'000'000'000;    // 60 s
-  static constexpr std::size_t kMaxOutlierRun = 16;                // frames
+  static constexpr std::int64_t kJumpNs = 1'000'000'000;         // 1 s
+  static constexpr std::int64_t kLongestGapNs = 60'000'000'000;  // 60 s
+  static constexpr std::size_t kMaxOutlierRun = 16;              // frames
 
-  std::vector<bool> skipped;             // per frame of the input: an outlier, not played
-  std::vector<std::int64_t> play_ns;     // per frame: its time on the playback axis (unused if skipped)
-  std::uint64_t outlier_frames = 0;      // frames skipped
-  std::uint64_t time_steps = 0;          // steps played at once
-  std::int64_t first_outlier_index = -1; // index of the first skipped frame, -1 if none
-  std::int64_t first_step_index = -1;    // index of the frame after the first time step, -1 if none
+  std::vector<bool> skipped;              // per frame of the input: an outlier, not played
+  std::vector<std::int64_t> play_ns;      // per frame: its time on the playback axis (unused if skipped)
+  std::uint64_t outlier_frames = 0;       // frames skipped
+  std::uint64_t time_steps = 0;           // steps played at once
+  std::int64_t first_outlier_index = -1;  // index of the first skipped frame, -1 if none
+  std::int64_t first_step_index = -1;     // index of the frame after the first time step, -1 if none
 };
 
 // `log_ns`: each frame's logged time, in file order.

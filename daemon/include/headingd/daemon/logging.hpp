@@ -3,9 +3,9 @@
 // that SIGHUP reopens (for logrotate). When stderr is the journal (JOURNAL_STREAM names it,
 // journal_stream.hpp) lines carry their priority as an sd-daemon "<N>" prefix and no
 // timestamp of their own (the journal adds one): "<4>[warning] gps: ...".
+#include <spdlog/spdlog.h>
 #include <cstdint>
 #include <memory>
-#include <spdlog/spdlog.h>
 #include <string>
 
 #include "headingd/daemon/config.hpp"

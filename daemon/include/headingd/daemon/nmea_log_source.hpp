@@ -78,7 +78,7 @@ class NmeaLogSource final : public AsioSource<nmea::NmeaLogPlayerCounters> {
   std::optional<std::int64_t> first_day_ns_;  // NmeaLogTime::logDayStart
   std::int64_t offset_ns_ = 0;
   std::size_t epochs_in_log_ = 0;
-  bool end_missing_ = false;  // the gzip stream ended before its trailer
+  bool end_missing_ = false;             // the gzip stream ended before its trailer
   std::optional<NmeaLogTime> log_time_;  // made at start()
 
   std::unique_ptr<nmea::NmeaLogPlayer> player_;

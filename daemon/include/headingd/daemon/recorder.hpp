@@ -27,7 +27,7 @@ struct RecorderCounters {
   std::uint64_t lines_dropped_io = 0;         // written to no file because of a write/open error (full disk, I/O error)
   std::uint64_t write_errors = 0;             // failed open/write/fsync calls (and failed deletions by the cap)
   std::uint64_t segments_opened = 0, segments_deleted = 0;  // deleted = by the total cap
-  std::uint64_t bytes_on_disk = 0;            // under dir, as the cap sees it
+  std::uint64_t bytes_on_disk = 0;                          // under dir, as the cap sees it
 };
 
 // Each counter with its STATUS name, in a fixed order.
@@ -87,7 +87,7 @@ class RecorderWriter;
 class Recorder {
  public:
   Recorder(RecorderConfig config, std::vector<std::string> stream_names);  // e.g. {"can", "gps", "estimator"}
-  ~Recorder();  // stop()
+  ~Recorder();                                                             // stop()
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
 
@@ -103,7 +103,7 @@ class Recorder {
   // Writes what the rings still hold, closes the files, joins the thread. Idempotent.
   void stop();
   const std::string& folder() const { return folder_; }  // "" before start() or when off
-  RecorderCounters counters() const;  // any thread
+  RecorderCounters counters() const;                     // any thread
 
  private:
   RecorderConfig config_;

@@ -1,10 +1,10 @@
 #pragma once
 // The [recorder] table: where the black box writes its recordings and how much it keeps.
 // Every key, its default and range are documented in config/headingd.toml.
+#include <toml++/toml.h>
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <toml++/toml.h>
 
 namespace headingd::daemon {
 

@@ -23,6 +23,7 @@ RecordingStart recordingStartNow(std::string program_version);
 
 // (name in the folder, content) for each file. Reads the files the configuration names;
 // throws std::runtime_error if one cannot be read.
-std::vector<std::pair<std::string, std::string>> recordingFiles(const DaemonConfig& config, const RecordingStart& start);
+std::vector<std::pair<std::string, std::string>> recordingFiles(const DaemonConfig& config,
+                                                                const RecordingStart& start);
 
 }  // namespace headingd::daemon

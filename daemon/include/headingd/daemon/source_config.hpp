@@ -27,8 +27,8 @@ enum class TimeAxis {
 // One source table as parsed. Each kind derives its own settings from it.
 struct SourceConfig {
   virtual ~SourceConfig() = default;
-  std::string table;        // the TOML table it came from, also the source's name ("can")
-  bool enabled = false;     // false: the table is present but the source does not run
+  std::string table;     // the TOML table it came from, also the source's name ("can")
+  bool enabled = false;  // false: the table is present but the source does not run
   // For a kind on its own file axis: true when this configuration puts the file's times on
   // CLOCK_MONOTONIC instead, so that it can run beside the live sources.
   virtual bool onMonotonicClock() const { return false; }
@@ -38,8 +38,8 @@ struct SourceConfig {
 // all of them play on one clock: log time t is played at start + (t - t0) / speed, where t0
 // is the earliest first timestamp of the logs.
 struct PlaybackConfig {
-  double speed = 1.0;          // 1 = real time; the estimator sees the logs' own timestamps at any speed
-  double start_delay_s = 0.0;  // wait this long after start before the first frame or sentence
+  double speed = 1.0;           // 1 = real time; the estimator sees the logs' own timestamps at any speed
+  double start_delay_s = 0.0;   // wait this long after start before the first frame or sentence
   AtEnd at_end = AtEnd::kStay;  // kStay, kExit or kLoop (not with [recording]: a run replays once)
 };
 

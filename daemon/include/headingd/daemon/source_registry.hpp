@@ -4,13 +4,13 @@
 // and the factory that makes the source. The daemon's configuration reader hands each source
 // table to its row, and the daemon makes the enabled sources by walking the rows; neither
 // names a kind. daemon/README.md ("Adding a source") shows how a kind is added.
+#include <toml++/toml.h>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <toml++/toml.h>
 #include <vector>
 
 #include "headingd/daemon/playback_clock.hpp"
@@ -45,11 +45,11 @@ struct SourceContext {
   std::vector<std::unique_ptr<SampleRing<ImuRingEntry>>>& imu_rings;  // owned by the daemon
   std::vector<std::unique_ptr<SampleRing<GpsRingEntry>>>& gps_rings;
   const PlaybackConfig& playback;
-  const PlaybackClock* playback_clock;  // filled by the daemon before it starts the sources
-  std::uint16_t source_index = 0;       // of the source being made
-  std::optional<std::int64_t> log_t0_ns;  // earliest first timestamp of the log sources made so far
+  const PlaybackClock* playback_clock;      // filled by the daemon before it starts the sources
+  std::uint16_t source_index = 0;           // of the source being made
+  std::optional<std::int64_t> log_t0_ns;    // earliest first timestamp of the log sources made so far
   const RecorderSinks* recorder = nullptr;  // null: the live sources record nothing
-  std::optional<std::int64_t> log_end_ns;  // latest last timestamp of the log sources made so far
+  std::optional<std::int64_t> log_end_ns;   // latest last timestamp of the log sources made so far
   std::optional<std::int64_t> log_step_ns;  // shortest sample period of the log sources made so far
 
   // A new ring named "<source_name>.imu" / "<source_name>.gps".

@@ -13,8 +13,8 @@
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/daemon/config.hpp"
 #include "headingd/daemon/latency_histogram.hpp"
-#include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/daemon/lcm_messages.hpp"
+#include "headingd/daemon/nmea_out_server.hpp"
 #include "headingd/daemon/realtime.hpp"
 #include "headingd/daemon/recorder.hpp"
 #include "headingd/daemon/ring_entries.hpp"
@@ -63,11 +63,11 @@ struct LoopCounters {
   std::uint64_t imu_rejected = 0;               // IMU samples the sample gate did not use
   std::uint64_t mag_calibration_set_aside = 0;  // mag_calibration_fit.hpp
   std::uint64_t mag_calibration_taken_back = 0;
-  std::uint64_t gps_epochs = 0;                 // GPS epochs that went into the estimator
+  std::uint64_t gps_epochs = 0;  // GPS epochs that went into the estimator
   std::uint64_t gps_epochs_used_for_declination = 0;
-  std::uint64_t gps_epochs_forced_out = 0;      // went in early: too many held (never expected)
-  std::uint64_t gps_values_ignored = 0;         // unusable GPS values left out (HeadingPipeline::processGps)
-  std::uint64_t log_write_errors = 0;           // the log file could not be written (logging.hpp)
+  std::uint64_t gps_epochs_forced_out = 0;  // went in early: too many held (never expected)
+  std::uint64_t gps_values_ignored = 0;     // unusable GPS values left out (HeadingPipeline::processGps)
+  std::uint64_t log_write_errors = 0;       // the log file could not be written (logging.hpp)
 };
 
 // "ok", "degraded" (see `reason`) or "starting" (no estimate yet); `reason` is empty unless

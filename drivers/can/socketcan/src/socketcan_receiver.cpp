@@ -160,9 +160,8 @@ void SocketCanReceiver::tryOpen() {
   const int one = 1;
   const can_err_mask_t err_mask = settings_.error_frames ? CAN_ERR_MASK : 0;
   const int rcvbuf = settings_.receive_buffer_bytes;
-  if ((!filters.empty() &&
-       ::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FILTER, filters.data(),
-                    static_cast<socklen_t>(filters.size() * sizeof(can_filter))) != 0) ||
+  if ((!filters.empty() && ::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FILTER, filters.data(),
+                                        static_cast<socklen_t>(filters.size() * sizeof(can_filter))) != 0) ||
       ::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &err_mask, sizeof err_mask) != 0 ||
       ::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &one, sizeof one) != 0 ||
       ::setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof one) != 0) {
@@ -180,8 +179,8 @@ void SocketCanReceiver::tryOpen() {
   addr.can_ifindex = static_cast<int>(ifindex);
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
     const int err = errno;
-    fail(err == ENODEV ? LinkState::waiting : LinkState::down, err,
-         "bind to " + name + " failed: " + errnoText(err), fd);
+    fail(err == ENODEV ? LinkState::waiting : LinkState::down, err, "bind to " + name + " failed: " + errnoText(err),
+         fd);
     return;
   }
   boost::system::error_code ec;
@@ -263,7 +262,9 @@ void SocketCanReceiver::onReadable(const boost::system::error_code& ec) {
     f.error_frame = (kf.can_id & CAN_ERR_FLAG) != 0;
     f.extended = !f.error_frame && (kf.can_id & CAN_EFF_FLAG) != 0;
     f.remote = !f.error_frame && (kf.can_id & CAN_RTR_FLAG) != 0;
-    f.id = f.error_frame ? (kf.can_id & CAN_ERR_MASK) : f.extended ? (kf.can_id & CAN_EFF_MASK) : (kf.can_id & CAN_SFF_MASK);
+    f.id = f.error_frame ? (kf.can_id & CAN_ERR_MASK)
+           : f.extended  ? (kf.can_id & CAN_EFF_MASK)
+                         : (kf.can_id & CAN_SFF_MASK);
     f.len = kf.len > kClassicMaxLen ? kClassicMaxLen : kf.len;
     std::memcpy(f.data.data(), kf.data, kClassicMaxLen);
     if (f.error_frame) {

@@ -3,10 +3,10 @@
 #include <dirent.h>
 #include <unistd.h>
 
+#include <limits.h>
 #include <algorithm>
 #include <cctype>
 #include <fstream>
-#include <limits.h>
 #include <memory>
 
 namespace headingd::nmea {

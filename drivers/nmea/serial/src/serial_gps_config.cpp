@@ -11,7 +11,7 @@ namespace {
 
 using core::ConfigError;
 
-constexpr std::array<std::uint32_t, 11> kBaudRates = {1200,  2400,  4800,   9600,   19200, 38400,
+constexpr std::array<std::uint32_t, 11> kBaudRates = {1200,  2400,   4800,   9600,   19200, 38400,
                                                       57600, 115200, 230400, 460800, 921600};
 
 std::string baudList() {
@@ -47,7 +47,8 @@ SerialGpsConfig parseGpsTable(const toml::table* gps, const std::string& source)
   if (const toml::node* baud = r.node("baud")) {
     if (!baud->is_integer()) r.fail("baud", "expected an integer, one of " + baudList());
     const std::int64_t b = *baud->value<std::int64_t>();
-    if (!isStandardBaudRate(b)) r.fail("baud", std::to_string(b) + " is not a standard rate, expected one of " + baudList());
+    if (!isStandardBaudRate(b))
+      r.fail("baud", std::to_string(b) + " is not a standard rate, expected one of " + baudList());
     c.baud = static_cast<unsigned>(b);
   }
   c.reopen_backoff_initial_s = r.number("reopen_backoff_initial_s", c.reopen_backoff_initial_s, 0.01, 60.0, "s");

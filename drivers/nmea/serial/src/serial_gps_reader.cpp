@@ -8,8 +8,8 @@
 #include <utility>
 #include <variant>
 
-#include <boost/asio/error.hpp>
 #include <spdlog/spdlog.h>
+#include <boost/asio/error.hpp>
 
 #include "headingd/nmea/serial_port_open.hpp"
 

@@ -34,25 +34,19 @@ inline DipSign dipSignOf(double expected_dip_rad) {
 template <typename T>
 bool dipAgrees(const T& sin_dip, DipSign sign) {
   switch (sign) {
-    case DipSign::kDown:
-      return sin_dip > T(0.0);
-    case DipSign::kUp:
-      return sin_dip < T(0.0);
+    case DipSign::kDown: return sin_dip > T(0.0);
+    case DipSign::kUp: return sin_dip < T(0.0);
     case DipSign::kUnknown:
-    default:
-      return true;
+    default: return true;
   }
 }
 
 inline const char* dipSignName(DipSign s) {
   switch (s) {
-    case DipSign::kDown:
-      return "down (northern magnetic hemisphere)";
-    case DipSign::kUp:
-      return "up (southern magnetic hemisphere)";
+    case DipSign::kDown: return "down (northern magnetic hemisphere)";
+    case DipSign::kUp: return "up (southern magnetic hemisphere)";
     case DipSign::kUnknown:
-    default:
-      return "unknown";
+    default: return "unknown";
   }
 }
 

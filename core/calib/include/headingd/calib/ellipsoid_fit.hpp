@@ -18,11 +18,11 @@
 namespace headingd::calib {
 
 struct EllipsoidFit {
-  core::Mat3 D;               // y = D m + o, symmetric positive definite (up to a rotation)
-  core::Vec3 offset_uT;       // o
-  double field_norm_uT;       // |m| the fit was scaled to
-  double residual_rms_uT;     // RMS of | |D⁻¹(y - o)| - |m| |
-  double coverage;            // fraction of the sphere the calibrated directions visit, 0..1
+  core::Mat3 D;            // y = D m + o, symmetric positive definite (up to a rotation)
+  core::Vec3 offset_uT;    // o
+  double field_norm_uT;    // |m| the fit was scaled to
+  double residual_rms_uT;  // RMS of | |D⁻¹(y - o)| - |m| |
+  double coverage;         // fraction of the sphere the calibrated directions visit, 0..1
   // Ratio of the largest to the smallest singular value of the fit's Jacobian (field-norm
   // residuals against D⁻¹ and o, in normalised units): how well the data pin the answer
   // down. About 10 for a hand-held minute, 100 and more for three turns about the axes.
@@ -48,8 +48,7 @@ struct EllipsoidFitOptions {
 // Throws CalibrationError for too few samples, non-finite values, rotations that do not
 // cover enough of the sphere (the message gives the coverage measured), or data that
 // no ellipsoid fits.
-EllipsoidFit fitEllipsoid(std::span<const core::Vec3> mag_uT, double field_norm_uT,
-                          const EllipsoidFitOptions& options);
+EllipsoidFit fitEllipsoid(std::span<const core::Vec3> mag_uT, double field_norm_uT, const EllipsoidFitOptions& options);
 inline EllipsoidFit fitEllipsoid(std::span<const core::Vec3> mag_uT, double field_norm_uT) {
   return fitEllipsoid(mag_uT, field_norm_uT, EllipsoidFitOptions{});
 }

@@ -13,10 +13,10 @@
 namespace headingd::calib {
 
 struct StaticDetectionOptions {
-  double window_s = 0.5;             // centred window of the variance tests
-  double min_duration_s = 2.0;       // shorter still stretches are not segments
-  double noise_floor_factor = 2.5;   // still: window σ below this × the floor (per sensor)
-  double min_gyro_sigma_rad_s = 0.003;   // floors of the thresholds (an ideal sensor has σ 0)
+  double window_s = 0.5;                // centred window of the variance tests
+  double min_duration_s = 2.0;          // shorter still stretches are not segments
+  double noise_floor_factor = 2.5;      // still: window σ below this × the floor (per sensor)
+  double min_gyro_sigma_rad_s = 0.003;  // floors of the thresholds (an ideal sensor has σ 0)
   double min_accel_sigma_m_s2 = 0.01;
   double max_gyro_mean_rad_s = 0.1;  // a slow steady turn has a small σ too; biases are below this
 };

@@ -39,8 +39,8 @@ struct AccelSixPositionResult {
   core::Vec3 scale = core::Vec3::Ones();
   core::Vec3 bias_m_s2 = core::Vec3::Zero();
 };
-AccelSixPositionResult calibrateAccelSixPosition(std::span<const StaticSegment> segments,
-                                                 std::span<const Face> faces, double gravity_m_s2 = 9.81);
+AccelSixPositionResult calibrateAccelSixPosition(std::span<const StaticSegment> segments, std::span<const Face> faces,
+                                                 double gravity_m_s2 = 9.81);
 
 struct GyroBiasResult {
   core::Vec3 bias_rad_s = core::Vec3::Zero();
@@ -61,7 +61,7 @@ GyroScaleResult gyroScaleFromTurns(std::span<const core::ImuSample> samples, std
 struct MagNewtonResult {
   core::Mat3 alpha = core::Mat3::Identity();  // m = α (m̂ − b), upper triangular
   core::Vec3 bias_uT = core::Vec3::Zero();
-  double dip_rad = 0.0;        // used (given) or estimated
+  double dip_rad = 0.0;  // used (given) or estimated
   double residual_rms_uT = 0.0;
   int iterations = 0;
 };

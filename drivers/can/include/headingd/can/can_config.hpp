@@ -38,8 +38,8 @@ struct CanConfig {
   std::optional<double> gyro_unit_factor;       // overrides the DBC unit: value * factor = rad/s
   std::optional<double> accel_unit_factor;      // ... = m/s^2
   std::optional<double> mag_unit_factor;        // ... = uT
-  double epoch_window_s = 0.002;   // frames of one epoch arrive within this time of its first frame
-  bool epoch_waits_for_mag = true;  // false: release on gyro+accel, a later mag goes to the next sample
+  double epoch_window_s = 0.002;                // frames of one epoch arrive within this time of its first frame
+  bool epoch_waits_for_mag = true;              // false: release on gyro+accel, a later mag goes to the next sample
   double reconnect_initial_s = 0.1;
   double reconnect_max_s = 5.0;
   int receive_buffer_bytes = 1 << 20;

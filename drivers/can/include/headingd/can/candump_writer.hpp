@@ -16,13 +16,13 @@ struct CandumpWriteOptions {
   std::string interface = "can0";
   std::int64_t start_time_ns = 1'700'000'000'000'000'000;  // added to the samples' t_ns (CLOCK_REALTIME)
   std::int64_t frame_spacing_ns = 200'000;  // between frames of one epoch (an 8-byte frame at 500 kbit/s is ~0.25 ms)
-  int mag_every = 1;  // magnetometer frames on every n-th epoch only (a slower magnetometer)
+  int mag_every = 1;                        // magnetometer frames on every n-th epoch only (a slower magnetometer)
 };
 
 struct CandumpWriteStats {
   std::uint64_t epochs = 0;
   std::uint64_t frames = 0;
-  std::uint64_t clamped_values = 0;  // values outside a signal's range, written as its nearest end
+  std::uint64_t clamped_values = 0;           // values outside a signal's range, written as its nearest end
   std::uint64_t epochs_without_mag_data = 0;  // samples with has_mag = false: no magnetometer frame
 };
 

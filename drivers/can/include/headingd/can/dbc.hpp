@@ -39,7 +39,7 @@ struct DbcSignal {
 };
 
 struct DbcMessage {
-  std::uint32_t id = 0;  // without the extended flag
+  std::uint32_t id = 0;   // without the extended flag
   bool extended = false;  // bit 31 (0x80000000) of the id in the file
   std::string name;
   unsigned dlc = 8;  // bytes

@@ -28,22 +28,22 @@ struct EpochSettings {
 EpochSettings epochSettingsFrom(const CanConfig& config);
 
 struct AssemblerCounters {
-  std::uint64_t frames = 0;              // every frame pushed
-  std::uint64_t decoded_frames = 0;      // frames of a mapped message with the right length
-  std::uint64_t samples = 0;             // samples released
+  std::uint64_t frames = 0;          // every frame pushed
+  std::uint64_t decoded_frames = 0;  // frames of a mapped message with the right length
+  std::uint64_t samples = 0;         // samples released
   std::uint64_t samples_with_mag = 0;
-  std::uint64_t incomplete_epochs = 0;   // epochs that ended without all gyro and accel axes
-  std::uint64_t sequence_gaps = 0;       // times the epoch counter skipped
-  std::uint64_t missing_epochs = 0;      // epochs the counter skipped over, in total (less those that came late)
-  std::uint64_t reordered_epochs = 0;    // epochs whose counter is behind a newer one's (arrived late)
-  std::uint64_t duplicate_frames = 0;    // a message repeated within one counted epoch
-  std::uint64_t late_frames = 0;         // gyro/accel frames of an epoch already released
-  std::uint64_t late_mag_frames = 0;     // magnetometer frames after their epoch: used for the next sample
-  std::uint64_t superseded_mag = 0;      // such a magnetometer value replaced by a newer one before use
-  std::uint64_t unknown_id_frames = 0;   // id not among the mapped messages
-  std::uint64_t wrong_length_frames = 0; // mapped id, length differs from the DBC
-  std::uint64_t remote_frames = 0;       // remote requests with a mapped id
-  std::uint64_t error_frames = 0;        // kernel error frames passed in (decoded by the receiver)
+  std::uint64_t incomplete_epochs = 0;    // epochs that ended without all gyro and accel axes
+  std::uint64_t sequence_gaps = 0;        // times the epoch counter skipped
+  std::uint64_t missing_epochs = 0;       // epochs the counter skipped over, in total (less those that came late)
+  std::uint64_t reordered_epochs = 0;     // epochs whose counter is behind a newer one's (arrived late)
+  std::uint64_t duplicate_frames = 0;     // a message repeated within one counted epoch
+  std::uint64_t late_frames = 0;          // gyro/accel frames of an epoch already released
+  std::uint64_t late_mag_frames = 0;      // magnetometer frames after their epoch: used for the next sample
+  std::uint64_t superseded_mag = 0;       // such a magnetometer value replaced by a newer one before use
+  std::uint64_t unknown_id_frames = 0;    // id not among the mapped messages
+  std::uint64_t wrong_length_frames = 0;  // mapped id, length differs from the DBC
+  std::uint64_t remote_frames = 0;        // remote requests with a mapped id
+  std::uint64_t error_frames = 0;         // kernel error frames passed in (decoded by the receiver)
 };
 
 struct AssembledSamples {

@@ -31,8 +31,8 @@ inline std::int64_t epochFlushAgeNs(const CanConfig& config, const ImuFrameCodec
 
 // EpochAssembler::flush(now) gives up after the configured window; moving `now` back by the
 // difference makes it give up after `flush_age_ns` instead.
-inline AssembledSamples flushEpoch(EpochAssembler& assembler, const CanConfig& config,
-                                        std::int64_t flush_age_ns, std::int64_t now_ns) {
+inline AssembledSamples flushEpoch(EpochAssembler& assembler, const CanConfig& config, std::int64_t flush_age_ns,
+                                   std::int64_t now_ns) {
   const auto window_ns = static_cast<std::int64_t>(std::llround(config.epoch_window_s * 1e9));
   return assembler.flush(now_ns - (flush_age_ns - window_ns));
 }

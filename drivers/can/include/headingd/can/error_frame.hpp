@@ -14,8 +14,8 @@ struct BusErrorCounters {
   std::uint64_t controller_problems = 0;
   std::uint64_t controller_rx_overflow = 0;  // frames lost in the controller
   std::uint64_t controller_tx_overflow = 0;
-  std::uint64_t error_warning = 0;           // rx or tx error counter reached 96
-  std::uint64_t error_passive = 0;           // ... reached 128
+  std::uint64_t error_warning = 0;  // rx or tx error counter reached 96
+  std::uint64_t error_passive = 0;  // ... reached 128
   std::uint64_t back_to_error_active = 0;
   std::uint64_t protocol_violations = 0;
   std::uint64_t transceiver_problems = 0;

@@ -31,8 +31,8 @@ constexpr std::uint32_t j1939Id(std::uint8_t priority, std::uint32_t pgn, std::u
                                 std::uint8_t destination_address = 0xFF) {
   const std::uint32_t pf = (pgn >> 8) & 0xFFu;
   const std::uint32_t ps = pf >= kJ1939Pdu2Threshold ? (pgn & 0xFFu) : destination_address;
-  return (static_cast<std::uint32_t>(priority & 0x7u) << 26) | (((pgn >> 16) & 0x3u) << 24) | (pf << 16) |
-         (ps << 8) | source_address;
+  return (static_cast<std::uint32_t>(priority & 0x7u) << 26) | (((pgn >> 16) & 0x3u) << 24) | (pf << 16) | (ps << 8) |
+         source_address;
 }
 
 }  // namespace headingd::can

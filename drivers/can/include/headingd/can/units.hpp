@@ -8,7 +8,7 @@ namespace headingd::can {
 
 enum class Quantity { angular_rate, acceleration, magnetic_field };
 
-const char* siUnitName(Quantity q);  // "rad/s", "m/s^2", "uT"
+const char* siUnitName(Quantity q);    // "rad/s", "m/s^2", "uT"
 const char* quantityName(Quantity q);  // "angular rate", ...
 
 // Multiply a value in `unit` by this to get the SI value; nullopt when the unit is not known

@@ -78,7 +78,7 @@ inline std::from_chars_result readDecimal(const char* first, const char* last, d
   if (first == last) return std::from_chars(first, last, *value);
   const char* p = first;
   const bool negative = *p == '-';
-  p += negative;  // no branch: signs come at random
+  p += negative;               // no branch: signs come at random
   std::uint64_t mantissa = 0;  // wraps past 19 digits: such numbers go to from_chars below
   const char* digits_start = p;
   p = detail::appendDigits(p, last, mantissa);
@@ -97,7 +97,6 @@ inline std::from_chars_result readDecimal(const char* first, const char* last, d
   *value = std::bit_cast<double>(std::bit_cast<std::uint64_t>(magnitude) | (std::uint64_t{negative} << 63));
   return {p, std::errc()};
 }
-
 
 // Writes what printf("%.*f", digits, value) writes (digits 0..9), correctly rounded with ties
 // to even as glibc's printf and std::to_chars do, and returns one past the last character.

@@ -19,9 +19,9 @@ class FileError : public std::runtime_error {
 // above any real file of its kind and far below what would hurt a small computer. Documented in
 // daemon/README.md ("Files and their limits").
 inline constexpr std::uint64_t kMiB = 1024 * 1024;
-inline constexpr std::uint64_t kConfigFileLimit = 1 * kMiB;       // TOML: daemon, CAN, calibration
-inline constexpr std::uint64_t kDbcFileLimit = 16 * kMiB;         // vendor DBC files run to a few MB
-inline constexpr std::uint64_t kWmmFileLimit = 4 * kMiB;          // WMM.COF is 13 kB, WMMHR 0.5 MB
+inline constexpr std::uint64_t kConfigFileLimit = 1 * kMiB;  // TOML: daemon, CAN, calibration
+inline constexpr std::uint64_t kDbcFileLimit = 16 * kMiB;    // vendor DBC files run to a few MB
+inline constexpr std::uint64_t kWmmFileLimit = 4 * kMiB;     // WMM.COF is 13 kB, WMMHR 0.5 MB
 // Logs that a reader holds whole in memory (the daemon's candump and NMEA log sources, the
 // tools' NMEA captures): 1 GiB is days of a 100 Hz IMU's candump text.
 inline constexpr std::uint64_t kWholeLogLimit = 1024 * kMiB;

@@ -36,11 +36,11 @@ class LineReader {
 
   std::string path_;
   std::size_t max_line_bytes_;
-  void* file_ = nullptr;    // gzFile (kept out of this header so users need not include zlib)
+  void* file_ = nullptr;            // gzFile (kept out of this header so users need not include zlib)
   std::unique_ptr<char[]> buffer_;  // not zeroed: every byte used is read first
   std::size_t capacity_ = 0;
-  std::size_t begin_ = 0;   // first byte not handed out yet
-  std::size_t end_ = 0;     // one past the last byte read
+  std::size_t begin_ = 0;  // first byte not handed out yet
+  std::size_t end_ = 0;    // one past the last byte read
   bool at_eof_ = false;
   std::size_t line_number_ = 0;
   std::uint64_t bytes_read_ = 0;  // of text (decompressed), for the truncation message

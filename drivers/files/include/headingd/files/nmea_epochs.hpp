@@ -1,7 +1,7 @@
 #pragma once
 // GPS epochs from an NMEA capture, placed on the IMU's time axis.
 //
-// Alignment rule (documented in the README and in headingd-replay --help): NMEA carries
+// Alignment rule (documented in docs/tools.md and in headingd-replay --help): NMEA carries
 // the UTC time of each fix but no IMU time, so the capture's first epoch (the first
 // sentence with a UTC time of day) is taken to be IMU time `first_epoch_t_s` (default 0, the
 // first IMU row, which is how headingd-sim writes its captures), and every later epoch lies

@@ -35,10 +35,10 @@ class OutputFile {
   const std::string& path() const { return path_; }
 
  private:
-  std::string path_;       // as given (messages)
-  std::string final_path_; // what is replaced (a link's target)
-  std::string temp_path_;  // "" when written directly
-  int cleanup_slot_ = -1;  // removeOnFatalSignal's, while temp_path_ exists
+  std::string path_;        // as given (messages)
+  std::string final_path_;  // what is replaced (a link's target)
+  std::string temp_path_;   // "" when written directly
+  int cleanup_slot_ = -1;   // removeOnFatalSignal's, while temp_path_ exists
   std::FILE* file_ = nullptr;
   bool failed_ = false;
 };

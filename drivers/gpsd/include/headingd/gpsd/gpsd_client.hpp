@@ -24,10 +24,10 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
 
-#include "headingd/nmea/reconnect_delay.hpp"
 #include "headingd/gpsd/gpsd_config.hpp"
 #include "headingd/gpsd/gpsd_epoch_merger.hpp"
 #include "headingd/gpsd/json_line_framer.hpp"
+#include "headingd/nmea/reconnect_delay.hpp"
 
 namespace headingd::gpsd {
 
@@ -40,20 +40,20 @@ enum class GpsdState {
 const char* gpsdStateName(GpsdState s);  // "stopped", "connecting", "connected", "waiting"
 
 struct GpsdCounters {
-  LineCounters lines;                 // bytes, lines, oversized, cut (closed mid-line)
+  LineCounters lines;  // bytes, lines, oversized, cut (closed mid-line)
   std::uint64_t tpv_reports = 0;
   std::uint64_t sky_reports = 0;
-  std::uint64_t other_reports = 0;    // VERSION, DEVICES, WATCH, ... (read and ignored)
-  std::uint64_t malformed = 0;        // not JSON, no class, a field of the wrong type
-  std::uint64_t missing_fields = 0;   // TPV without mode, or a 2D/3D fix without lat/lon
-  std::uint64_t epochs = 0;           // fixes delivered
-  std::uint64_t late_reports = 0;     // TPVs of an epoch already delivered
+  std::uint64_t other_reports = 0;   // VERSION, DEVICES, WATCH, ... (read and ignored)
+  std::uint64_t malformed = 0;       // not JSON, no class, a field of the wrong type
+  std::uint64_t missing_fields = 0;  // TPV without mode, or a 2D/3D fix without lat/lon
+  std::uint64_t epochs = 0;          // fixes delivered
+  std::uint64_t late_reports = 0;    // TPVs of an epoch already delivered
   std::uint64_t connect_attempts = 0;
   std::uint64_t connect_failures = 0;
   std::uint64_t connects = 0;
-  std::uint64_t disconnects = 0;      // gpsd closed the connection or a read failed
+  std::uint64_t disconnects = 0;  // gpsd closed the connection or a read failed
   GpsdState state = GpsdState::kStopped;
-  std::string last_error;             // empty until something went wrong; kept after recovery
+  std::string last_error;  // empty until something went wrong; kept after recovery
 };
 
 // A line that was not used: kind ("malformed", "missing_fields", "oversized", "cut") and what.

@@ -41,7 +41,7 @@ class GpsdEpochMerger {
   std::optional<nmea::Fix> pending_;
   std::int64_t pending_receive_ns_ = 0;
   std::optional<std::int64_t> delivered_utc_ns_;  // the time of the last epoch delivered
-  SkyReport sky_between_;                          // a SKY that came while no epoch was pending
+  SkyReport sky_between_;                         // a SKY that came while no epoch was pending
   std::uint64_t epochs_ = 0;
   std::uint64_t late_reports_ = 0;
 };

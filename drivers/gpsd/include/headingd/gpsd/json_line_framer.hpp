@@ -12,9 +12,9 @@ namespace headingd::gpsd {
 
 struct LineCounters {
   std::uint64_t bytes = 0;
-  std::uint64_t lines = 0;       // complete lines handed on
-  std::uint64_t oversized = 0;   // lines longer than the bound, skipped
-  std::uint64_t cut = 0;         // lines the stream ended in the middle of (connection closed)
+  std::uint64_t lines = 0;      // complete lines handed on
+  std::uint64_t oversized = 0;  // lines longer than the bound, skipped
+  std::uint64_t cut = 0;        // lines the stream ended in the middle of (connection closed)
 };
 
 class JsonLineFramer {

@@ -21,14 +21,14 @@ struct Fix {
   std::optional<double> course_deg;  // over ground, true, [0, 360)
   std::optional<double> speed_mps;   // over ground
   std::optional<FixMode> mode;
-  std::optional<int> quality;        // GGA fix quality, see Gga::quality
+  std::optional<int> quality;  // GGA fix quality, see Gga::quality
   std::optional<double> hdop;
   std::optional<double> pdop;
   std::optional<double> vdop;
   std::optional<int> satellites_used;
-  std::optional<double> magvar_deg;  // receiver's magnetic variation (RMC), east positive
-  std::optional<double> heading_deg; // true heading (HDT), [0, 360)
-  std::optional<double> lat_sigma_m; // GST 1-sigma errors
+  std::optional<double> magvar_deg;   // receiver's magnetic variation (RMC), east positive
+  std::optional<double> heading_deg;  // true heading (HDT), [0, 360)
+  std::optional<double> lat_sigma_m;  // GST 1-sigma errors
   std::optional<double> lon_sigma_m;
   std::optional<double> alt_sigma_m;
 };

@@ -73,8 +73,8 @@ class FixAccumulator {
   std::optional<CivilDate> date_;
   std::int64_t date_time_of_day_ns_ = 0;
   // Evidence for the mode within the epoch.
-  bool epoch_no_fix_ = false;       // the last position sentence said "no fix"
-  bool epoch_valid_fix_ = false;    // the last position sentence was a valid fix
+  bool epoch_no_fix_ = false;     // the last position sentence said "no fix"
+  bool epoch_valid_fix_ = false;  // the last position sentence was a valid fix
   std::optional<int> epoch_gsa_mode_;
 };
 

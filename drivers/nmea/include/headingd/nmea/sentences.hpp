@@ -43,7 +43,7 @@ struct Rmc {
   std::optional<double> speed_mps;
   std::optional<double> course_deg;  // over ground, true
   std::optional<DayMonthYy> date;
-  std::optional<double> magvar_deg;  // magnetic variation, east positive
+  std::optional<double> magvar_deg;    // magnetic variation, east positive
   std::optional<char> mode_indicator;  // NMEA 2.3+
   std::optional<char> nav_status;      // NMEA 4.1+
 };
@@ -58,10 +58,10 @@ struct Gll {
 
 // Course over ground and ground speed.
 struct Vtg {
-  std::optional<double> course_deg;           // true
+  std::optional<double> course_deg;  // true
   std::optional<double> course_magnetic_deg;
-  std::optional<double> speed_mps;            // from knots, or km/h when knots are absent
-  std::optional<char> mode_indicator;         // NMEA 2.3+
+  std::optional<double> speed_mps;     // from knots, or km/h when knots are absent
+  std::optional<char> mode_indicator;  // NMEA 2.3+
 };
 
 // GNSS fix data, one mode indicator per constellation (GPS, GLONASS, Galileo, BeiDou, QZSS,
@@ -87,7 +87,7 @@ struct Gsa {
   std::optional<double> pdop;
   std::optional<double> hdop;
   std::optional<double> vdop;
-  std::optional<int> system_id;   // NMEA 4.1+
+  std::optional<int> system_id;  // NMEA 4.1+
 };
 
 // Pseudorange error statistics (1-sigma, metres).

@@ -43,10 +43,10 @@ struct RecordingCounters {
   std::uint64_t gps_epochs = 0;             // handed out
   std::uint64_t gps_epochs_not_placed = 0;  // assembled live but never reached the estimator
   std::uint64_t calibration_reloads = 0;
-  std::uint64_t lost_lines = 0;             // the recorder's "# lost N lines" notes, summed
-  std::uint64_t bad_lines = 0;              // lines that do not read (skipped; e.g. cut by a power loss)
-  std::string first_bad_line;               // "file:line: what was expected"
-  bool start_missing = false;               // the oldest segments were deleted by the recorder's cap
+  std::uint64_t lost_lines = 0;  // the recorder's "# lost N lines" notes, summed
+  std::uint64_t bad_lines = 0;   // lines that do not read (skipped; e.g. cut by a power loss)
+  std::string first_bad_line;    // "file:line: what was expected"
+  bool start_missing = false;    // the oldest segments were deleted by the recorder's cap
 };
 
 class RecordingReader {

@@ -17,13 +17,13 @@ struct RecordingSetup {
   std::string folder;
   std::string program_version;  // of the daemon that recorded
   std::string start_utc;
-  std::int64_t can_time_offset_ns = 0;  // candump time minus estimator time
-  std::optional<can::CanConfig> can;    // the [can] table, if the run had one
+  std::int64_t can_time_offset_ns = 0;       // candump time minus estimator time
+  std::optional<can::CanConfig> can;         // the [can] table, if the run had one
   std::optional<nmea::SerialGpsConfig> gps;  // the [gps] table, if the run had one
   core::EstimatorParams estimator;
   std::optional<core::ConfiguredPlace> place;  // the [place] table, with the date the run took
-  std::string wmm_path;          // in the folder; "" = the run had none
-  std::string calibration_path;  // in the folder; "" = none
+  std::string wmm_path;                        // in the folder; "" = the run had none
+  std::string calibration_path;                // in the folder; "" = none
 };
 
 // Reads header.toml and config.toml of `folder`. Throws core::ConfigError (file:line, key)

@@ -12,8 +12,8 @@
 namespace headingd::calib_montecarlo {
 
 enum class KsVariant {
-  kShort,  // K&S §8: 100 still + 300 rotating samples (4 s)
-  kLong,   // 100 still + 2900 rotating samples (30 s), slower turns, as a person calibrates
+  kShort,        // K&S §8: 100 still + 300 rotating samples (4 s)
+  kLong,         // 100 still + 2900 rotating samples (30 s), slower turns, as a person calibrates
   kFiveMinutes,  // 100 still + 29900 rotating (5 min): times the ML step on a recording's length
 };
 // Throws std::invalid_argument for anything but "short", "long" and "5min".
@@ -33,8 +33,8 @@ struct KsTruth {
 
 struct KsRun {
   std::vector<core::ImuSample> samples;
-  std::vector<core::Quat> q_nb;              // true attitude per sample (NED, x magnetic north)
-  std::vector<core::Vec3> mag_noise_free_uT; // D m_b + o: what the magnetometer reads without noise
+  std::vector<core::Quat> q_nb;               // true attitude per sample (NED, x magnetic north)
+  std::vector<core::Vec3> mag_noise_free_uT;  // D m_b + o: what the magnetometer reads without noise
   std::size_t stationary_samples = 100;
   KsTruth truth;
 };

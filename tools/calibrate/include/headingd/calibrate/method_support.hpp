@@ -18,8 +18,7 @@ void takeFieldNormFromDataIfUnknown(FieldNorm& field, std::span<const core::Vec3
 void applyPlace(calib::MlInitialOptions& o, calib::DipSign dip_sign, const FieldNorm& field);
 
 // Radial residuals (|m_b| − F)/σ of the calibrated field, for the report.
-std::vector<double> radialResiduals(const core::ImuCalibration& cal, std::span<const core::Vec3> mags,
-                                    double sigma_uT);
+std::vector<double> radialResiduals(const core::ImuCalibration& cal, std::span<const core::Vec3> mags, double sigma_uT);
 
 // The field's noise at rest carried through D⁻¹ (per axis), or `fallback` without a
 // measured noise.

@@ -36,8 +36,8 @@ struct Recording {
   std::span<const core::ImuSample> samples;
   double rate_hz = 0.0;
   std::vector<calib::StaticSegment> segments;
-  std::vector<core::Vec3> mags;              // the finite magnetometer samples
-  std::optional<core::Vec3> mag_sigma_raw;   // the field's noise in the longest static segment
+  std::vector<core::Vec3> mags;             // the finite magnetometer samples
+  std::optional<core::Vec3> mag_sigma_raw;  // the field's noise in the longest static segment
   // The dip's sign known from the place: Kok & Schön's misalignment step has a mirror pair
   // of solutions that the data alone cannot tell apart (calib/dip_sign.hpp).
   calib::DipSign dip_sign = calib::DipSign::kUnknown;
@@ -51,8 +51,8 @@ struct MlSettings {
 
 // Finds the static segments and the magnetometer samples, and takes the gyroscope's bias and
 // noise and the accelerometer's noise at rest (common to all methods) into `cal`.
-Recording prepareRecording(std::span<const core::ImuSample> samples, calib::DipSign dip_sign,
-                           core::ImuCalibration& cal, ReportInput& report);
+Recording prepareRecording(std::span<const core::ImuSample> samples, calib::DipSign dip_sign, core::ImuCalibration& cal,
+                           ReportInput& report);
 
 // The method's part. Without a known field norm, ellipsoid and ml take it from the data
 // (D of unit determinant) and say so in `field`.

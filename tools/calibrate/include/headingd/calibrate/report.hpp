@@ -13,15 +13,15 @@ namespace headingd::calibrate {
 struct ReportInput {
   std::string method;
   std::string source_file;
-  std::vector<double> t_s;          // per magnetometer sample
+  std::vector<double> t_s;  // per magnetometer sample
   std::vector<core::Vec3> mag_raw_uT;
   core::ImuCalibration calibration;
   // Normalised residuals (dimensionless, N(0,1) if the model and noise levels are right).
   std::vector<double> residuals;
-  std::string residual_kind;        // what the residuals are, for the caption
+  std::string residual_kind;  // what the residuals are, for the caption
   double coverage = 0.0;
   double condition_number = 0.0;
-  std::vector<std::string> notes;   // extra lines (timings, segments found, ...)
+  std::vector<std::string> notes;  // extra lines (timings, segments found, ...)
 };
 
 struct Verdict {

@@ -35,9 +35,10 @@ namespace headingd::lcm_export {
 template <class W>
 void describeFields(const headingd::heading_t& m, W& w) {
   HEADINGD_LCM_FIELDS(utime, sample_utime, sample_age_us, validity, heading_true_rad, heading_mag_rad,
-                      heading_mag_sigma_rad, heading_true_sigma_rad, declination_rad, declination_sigma_rad, declination_sources, declination_source, mount_yaw_rad,
-                      mount_yaw_sigma_rad, mag_disturbed, mag_norm_jump, mag_dip_jump, mag_norm_reference,
-                      mag_dip_reference, mag_used, mag_gain, mag_innovation_rad, heading_redefined);
+                      heading_mag_sigma_rad, heading_true_sigma_rad, declination_rad, declination_sigma_rad,
+                      declination_sources, declination_source, mount_yaw_rad, mount_yaw_sigma_rad, mag_disturbed,
+                      mag_norm_jump, mag_dip_jump, mag_norm_reference, mag_dip_reference, mag_used, mag_gain,
+                      mag_innovation_rad, heading_redefined);
 }
 
 template <class W>

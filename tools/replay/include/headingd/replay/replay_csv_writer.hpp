@@ -8,8 +8,8 @@
 // appears under its name only when close() succeeded.
 #include <cstdint>
 #include <cstdio>
-#include <string>
 #include <memory>
+#include <string>
 
 #include "headingd/core/heading_pipeline.hpp"
 #include "headingd/files/output_file.hpp"

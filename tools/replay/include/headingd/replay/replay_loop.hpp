@@ -1,8 +1,8 @@
 #pragma once
 // The replay loop: next sample -> estimator -> GPS epochs now due -> one output row, until
-// the sample source runs dry (in batches of kBatchRows rows). The source is any callable `bool(core::ImuSample*)`, so an IMU
-// CSV and another recorded input feed the same pipeline and writer; nothing is held but the
-// GPS epochs not yet due, so memory stays flat whatever the input's length.
+// the sample source runs dry (in batches of kBatchRows rows). The source is any callable `bool(core::ImuSample*)`, so
+// an IMU CSV and another recorded input feed the same pipeline and writer; nothing is held but the GPS epochs not yet
+// due, so memory stays flat whatever the input's length.
 #include <chrono>
 #include <cstddef>
 #include <cstdint>

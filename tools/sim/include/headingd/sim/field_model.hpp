@@ -15,8 +15,7 @@ class FieldModel {
  public:
   // `wmm` is the WMM at the scenario's place and date. A positive anomaly turns the
   // horizontal field east, so the local declination is WMM's + anomaly.
-  FieldModel(const Scenario& scenario, const core::MagneticFieldElements& wmm, double declination_anomaly_deg,
-             Rng rng);
+  FieldModel(const Scenario& scenario, const core::MagneticFieldElements& wmm, double declination_anomaly_deg, Rng rng);
 
   // The undisturbed local field (WMM turned by the anomaly).
   const core::Vec3& earthFieldNed_uT() const { return earth_ned_uT_; }

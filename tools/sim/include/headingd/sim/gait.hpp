@@ -9,10 +9,10 @@ namespace headingd::sim {
 
 struct GaitParams {
   double speed_mps = 0.0;
-  double step_hz = 0.0;          // steps (not strides) per second
-  double pitch_deg = 0.0;        // posture, zyx Euler angles of the body; forward lean < 0
+  double step_hz = 0.0;    // steps (not strides) per second
+  double pitch_deg = 0.0;  // posture, zyx Euler angles of the body; forward lean < 0
   double roll_deg = 0.0;
-  double height_m = 1.3;         // of the IMU (worn on the torso) above the ground
+  double height_m = 1.3;  // of the IMU (worn on the torso) above the ground
   // Per step: forward-backward and vertical excursions at the step frequency, lateral sway
   // at half of it (one sway cycle per stride).
   double forward_m = 0.0;

@@ -13,26 +13,26 @@
 namespace headingd::sim {
 
 struct TriadErrorParams {
-  core::Vec3 noise_density = core::Vec3::Zero();  // white noise, unit/√Hz: σ = density·√rate
-  core::Vec3 noise_sigma = core::Vec3::Zero();    // white noise per sample, unit (added in quadrature)
+  core::Vec3 noise_density = core::Vec3::Zero();      // white noise, unit/√Hz: σ = density·√rate
+  core::Vec3 noise_sigma = core::Vec3::Zero();        // white noise per sample, unit (added in quadrature)
   core::Vec3 offset_half_width = core::Vec3::Zero();  // o ~ U(-h, h) per axis
   core::Vec3 offset_drawn = core::Vec3::Zero();       // plus this, drawn elsewhere (the phone grade's)
   core::Vec3 bias_walk_density = core::Vec3::Zero();  // random walk, unit/√s
   core::Vec3 markov_sigma = core::Vec3::Zero();       // Gauss-Markov stationary σ, unit
   core::Vec3 markov_time_s = core::Vec3::Ones();      // its correlation time
-  double scale_half_width = 0.0;         // D_ii = 1 + U(-h, h)
-  double skew_half_width_rad = 0.0;      // ζ, η, ρ of D_skew ~ U(-h, h)
-  double rotation_half_width_rad = 0.0;  // zyx angles of D_rot ~ U(-h, h)
+  double scale_half_width = 0.0;                      // D_ii = 1 + U(-h, h)
+  double skew_half_width_rad = 0.0;                   // ζ, η, ρ of D_skew ~ U(-h, h)
+  double rotation_half_width_rad = 0.0;               // zyx angles of D_rot ~ U(-h, h)
   double full_scale = 0.0;  // each axis reads at most ±this (the sensor saturates); 0: no limit
 };
 
 // ideal: no errors at all. consumer: a calibrated consumer-grade MEMS IMU (the default), with
 // the noise and bias instability of a 2014 smartphone (MAGYQ's tables; its gyro is ~15 times
 // noisier than a current part). mems: consumer, with the white noise of current consumer
-// 9-axis parts' datasheets and their gyros' bias instability. uncalibrated: consumer, but the magnetometer distorted as in Kok & Schön's
-// Monte Carlo study (soft and hard iron of a raw sensor), for the calibration tools. phone: a
-// phone's sensors drawn per seed from ranges (phone_imu.hpp): noisy gyro with a constant bias
-// up to 6 deg/s, and a magnetometer slower than the IMU and late against the gyro.
+// 9-axis parts' datasheets and their gyros' bias instability. uncalibrated: consumer, but the magnetometer distorted as
+// in Kok & Schön's Monte Carlo study (soft and hard iron of a raw sensor), for the calibration tools. phone: a phone's
+// sensors drawn per seed from ranges (phone_imu.hpp): noisy gyro with a constant bias up to 6 deg/s, and a magnetometer
+// slower than the IMU and late against the gyro.
 enum class ImuGrade { kIdeal, kConsumer, kUncalibrated, kMems, kPhone };
 const char* imuGradeName(ImuGrade g);
 // Throws std::invalid_argument for an unknown name.
@@ -53,8 +53,8 @@ ImuErrorParams imuErrorParams(ImuGrade grade, double field_strength_uT);
 // at first + j / rate (its own clock) and its last sample is repeated in every row until the
 // next, as phones' sensor APIs deliver it.
 struct SensorTiming {
-  double mag_rate_hz = 0.0;            // 0: a new magnetometer sample with every row
-  double mag_first_sample_s = 0.0;     // time of magnetometer sample 0, within [0, 1/rate)
+  double mag_rate_hz = 0.0;         // 0: a new magnetometer sample with every row
+  double mag_first_sample_s = 0.0;  // time of magnetometer sample 0, within [0, 1/rate)
   double mag_lag_s = 0.0;
   double accel_lag_s = 0.0;
   bool isDefault() const { return mag_rate_hz == 0.0 && mag_lag_s == 0.0 && accel_lag_s == 0.0; }

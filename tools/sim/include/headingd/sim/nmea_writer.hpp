@@ -32,7 +32,7 @@ std::string nmeaSentence(std::string_view body);
 
 struct NmeaContext {
   UtcClock clock;
-  std::string talker = "GP";     // GP (GPS) or GN (multi-constellation)
+  std::string talker = "GP";      // GP (GPS) or GN (multi-constellation)
   double magnetic_variation_deg;  // the receiver's: WMM declination, east positive
 };
 

@@ -16,14 +16,16 @@ inline Phase phase(Activity a, double duration_s, std::vector<Turn> turns = {}) 
 }
 
 // Outdoors (a fix) in a disturbed field: passing cars, a street's steel.
-inline Phase fieldPhase(Activity a, double duration_s, const FieldDisturbanceSpec& field, std::vector<Turn> turns = {}) {
+inline Phase fieldPhase(Activity a, double duration_s, const FieldDisturbanceSpec& field,
+                        std::vector<Turn> turns = {}) {
   Phase p = phase(a, duration_s, std::move(turns));
   p.field = field;
   return p;
 }
 
 // Indoors: no fix, and the building's field.
-inline Phase indoorPhase(Activity a, double duration_s, const FieldDisturbanceSpec& field, std::vector<Turn> turns = {}) {
+inline Phase indoorPhase(Activity a, double duration_s, const FieldDisturbanceSpec& field,
+                         std::vector<Turn> turns = {}) {
   Phase p = fieldPhase(a, duration_s, field, std::move(turns));
   p.indoor = true;
   return p;

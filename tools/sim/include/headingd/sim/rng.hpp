@@ -26,8 +26,8 @@ class Rng {
   core::Vec3 uniform3(double half_width) {
     return {uniform(-half_width, half_width), uniform(-half_width, half_width), uniform(-half_width, half_width)};
   }
-  core::Vec3 unitVector();               // uniform on the sphere
-  double exponential(double mean);       // waiting time of a Poisson process
+  core::Vec3 unitVector();          // uniform on the sphere
+  double exponential(double mean);  // waiting time of a Poisson process
 
  private:
   std::mt19937_64 engine_;

@@ -28,10 +28,10 @@ struct Turn {
 // through a door.
 struct FieldDisturbanceSpec {
   core::Vec3 offset_ned_uT = core::Vec3::Zero();  // fixed part, as given
-  double random_offset_uT = 0.0;     // plus a constant of this size in a seeded direction
-  double spatial_sigma_uT = 0.0;     // field varying with position (steel in walls, floors)
-  double transients_per_min = 0.0;   // passing cars, opened steel doors...
-  double transient_peak_uT = 0.0;    // largest peak; each draws U(0.3, 1) of it
+  double random_offset_uT = 0.0;                  // plus a constant of this size in a seeded direction
+  double spatial_sigma_uT = 0.0;                  // field varying with position (steel in walls, floors)
+  double transients_per_min = 0.0;                // passing cars, opened steel doors...
+  double transient_peak_uT = 0.0;                 // largest peak; each draws U(0.3, 1) of it
   // Each transient's half width (closest distance / speed) draws U(0.4 s, this): a car
   // passing close by is over in a second, a lift moving past the landing takes several.
   double transient_max_half_width_s = 2.0;
@@ -52,9 +52,9 @@ struct Phase {
 
 // Receiver conditions outdoors (indoors there is never a fix).
 struct GpsEnvironment {
-  double outlier_probability = 0.0;   // per epoch: start of a multipath jump
-  double outage_rate_per_min = 0.0;   // short outdoor outages (urban canyon, under a bridge)
-  int satellites = 10;                // typical number used
+  double outlier_probability = 0.0;  // per epoch: start of a multipath jump
+  double outage_rate_per_min = 0.0;  // short outdoor outages (urban canyon, under a bridge)
+  int satellites = 10;               // typical number used
 };
 
 // A sensor turned by hand or set down on a table, for calibration recordings: the attitude
@@ -89,7 +89,7 @@ struct ScriptedOrientation {
   std::vector<OrientationKeyframe> keyframes;  // t_s increasing, the first at 0
   std::vector<LinearShake> shakes;             // may overlap; the displacements add
   core::Vec3 lever_arm_body_m = core::Vec3::Zero();
-  double height_m = 1.0;            // of the rotation centre above the ground
+  double height_m = 1.0;  // of the rotation centre above the ground
   // Hand tremor: small rotations (a seeded sum of sinusoids at 6-12 Hz, physiological tremor)
   // plus a slow drift of the hand (0.1-0.5 Hz); 0 on a table.
   double tremor_deg = 0.0;

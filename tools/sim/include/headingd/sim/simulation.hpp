@@ -68,7 +68,7 @@ struct ImuRow {
   core::Vec3 gyro_rad_s = core::Vec3::Zero();  // sensor axes
   core::Vec3 accel_m_s2 = core::Vec3::Zero();  // specific force, sensor axes
   core::Vec3 mag_uT = core::Vec3::Zero();
-  core::Quat q_ns = core::Quat::Identity();   // true sensor-to-NED attitude (BROAD's ref, but NED)
+  core::Quat q_ns = core::Quat::Identity();  // true sensor-to-NED attitude (BROAD's ref, but NED)
   bool moving = false;
   // The gyro's true bias in this row: constant offset + drifting bias (sensor axes, rad/s),
   // what an estimator's bias estimate should converge to (the scale error D - I comes on top).
@@ -93,7 +93,7 @@ struct SimResult {
   Scenario scenario;
   core::MagneticFieldElements wmm;  // at the origin and date
   std::string wmm_model_name;
-  double declination_deg = 0.0;     // local truth: WMM's + anomaly
+  double declination_deg = 0.0;              // local truth: WMM's + anomaly
   core::Quat q_bs = core::Quat::Identity();  // sensor to body (the mount)
   Trajectory trajectory;
   std::vector<core::Vec3> field_ned_uT;  // true total field at each IMU row

@@ -26,7 +26,7 @@ struct TruthState {
   core::Vec3 position_ned_m = core::Vec3::Zero();
   core::Vec3 velocity_ned_mps = core::Vec3::Zero();
   core::Vec3 accel_ned_mps2 = core::Vec3::Zero();  // kinematic, gravity not included
-  double path_heading_rad = 0.0;  // direction of travel the person intends (no gait wobble)
+  double path_heading_rad = 0.0;                   // direction of travel the person intends (no gait wobble)
   std::size_t phase = 0;
   Activity activity = Activity::kStanding;
   bool indoor = false;

@@ -14,11 +14,11 @@
 namespace headingd::study {
 
 struct ReferenceDelays {
-  double mag_s = 0.0;   // the field reads the reference attitude of this long before
-  double mag_spread_uT = 0.0;       // the field's spread at that delay
+  double mag_s = 0.0;                  // the field reads the reference attitude of this long before
+  double mag_spread_uT = 0.0;          // the field's spread at that delay
   double mag_spread_at_zero_uT = 0.0;  // ... and without one
-  double gyro_s = 0.0;  // the gyro's rate is the reference's of this long before
-  bool valid = false;   // enough samples with a reference
+  double gyro_s = 0.0;                 // the gyro's rate is the reference's of this long before
+  bool valid = false;                  // enough samples with a reference
 };
 
 // Searches mag delays in [min_s, max_s] and gyro shifts in ±20 ms.

@@ -39,7 +39,7 @@ struct RunScore {
   // shows it in the first (NaN where a part has no samples).
   core::OrientationError aligned_opening_rmse{};
   core::OrientationError aligned_after_opening_rmse{};
-  double max_inclination_rad = 0.0;       // over the scored samples
+  double max_inclination_rad = 0.0;  // over the scored samples
   std::size_t scored = 0;
   std::size_t failed = 0;  // scored samples without an estimate (counted as 180°)
 };
@@ -55,9 +55,9 @@ double headingCoverage(const Recording& r, const std::vector<core::Quat>& estima
 struct EpisodeScore {
   double motion_start_s = 0.0;
   double motion_end_s = 0.0;
-  double inclination_rmse_rad = 0.0;      // during the motion
-  double max_inclination_rad = 0.0;       // during the motion
-  double max_inclination_after_rad = 0.0; // from settle_s after its end to the recording's end
+  double inclination_rmse_rad = 0.0;       // during the motion
+  double max_inclination_rad = 0.0;        // during the motion
+  double max_inclination_after_rad = 0.0;  // from settle_s after its end to the recording's end
   // Time after the motion's end from which the inclination error stays below `settled_rad`
   // (infinite if it never does).
   double settle_time_s = 0.0;

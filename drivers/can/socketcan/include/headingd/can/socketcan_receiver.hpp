@@ -47,18 +47,18 @@ ReceiverSettings receiverSettingsFrom(const CanConfig& config, const ImuFrameCod
 
 struct ReceiverStatus {
   LinkState state = LinkState::waiting;
-  int last_errno = 0;             // of the last failed open or read
-  std::string last_error;         // what failed, with the interface name
-  std::uint64_t frames = 0;       // data and error frames delivered to the callback
-  std::uint64_t kernel_drops = 0; // frames the kernel dropped for a full receive queue (SO_RXQ_OVFL)
+  int last_errno = 0;              // of the last failed open or read
+  std::string last_error;          // what failed, with the interface name
+  std::uint64_t frames = 0;        // data and error frames delivered to the callback
+  std::uint64_t kernel_drops = 0;  // frames the kernel dropped for a full receive queue (SO_RXQ_OVFL)
   std::uint64_t read_errors = 0;
   std::uint64_t truncated_reads = 0;  // recvmsg sizes other than a classic CAN frame
   std::uint64_t open_attempts = 0;
   std::uint64_t open_failures = 0;
-  std::uint64_t times_up = 0;          // transitions into `up` (1 + reconnections)
-  std::uint64_t times_lost = 0;        // transitions out of `up`
+  std::uint64_t times_up = 0;    // transitions into `up` (1 + reconnections)
+  std::uint64_t times_lost = 0;  // transitions out of `up`
   std::int64_t next_retry_delay_ns = 0;
-  int receive_buffer_bytes = 0;        // what the kernel granted
+  int receive_buffer_bytes = 0;  // what the kernel granted
   BusErrorCounters bus;
 };
 

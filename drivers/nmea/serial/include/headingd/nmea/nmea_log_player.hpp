@@ -25,9 +25,9 @@
 namespace headingd::nmea {
 
 struct NmeaLogPlayerConfig {
-  std::string path;          // plain text NMEA; '#' comment lines (gpsd captures) are skipped
-  double speed = 1.0;        // 1: real time; 10: ten times faster (tests)
-  double max_gap_s = 5.0;    // longest wait between two groups, in log time
+  std::string path;        // plain text NMEA; '#' comment lines (gpsd captures) are skipped
+  double speed = 1.0;      // 1: real time; 10: ten times faster (tests)
+  double max_gap_s = 5.0;  // longest wait between two groups, in log time
   ParserConfig parser;
   // The log's text when the caller has read it already (decompressed, say); `path` then only
   // names it in messages. Without it the file at `path` is read as it is.
@@ -40,8 +40,8 @@ struct NmeaLogPlayerCounters {
   std::uint64_t comment_lines = 0;
   std::uint64_t groups_total = 0;
   std::uint64_t groups_played = 0;
-  std::uint64_t long_gaps = 0;      // steps longer than max_gap_s, shortened
-  std::uint64_t backward_steps = 0; // time of day went back (not a midnight)
+  std::uint64_t long_gaps = 0;       // steps longer than max_gap_s, shortened
+  std::uint64_t backward_steps = 0;  // time of day went back (not a midnight)
   bool finished = false;
 };
 
@@ -51,8 +51,8 @@ class NmeaLogPlayer {
 
   // Reads and indexes the whole file; throws std::runtime_error naming the file if it cannot
   // be read, and std::invalid_argument for a speed or max_gap_s that is not positive.
-  NmeaLogPlayer(boost::asio::io_context& io, NmeaLogPlayerConfig config, FixHandler on_fix,
-                LineHandler on_line = {}, FinishedHandler on_finished = {});
+  NmeaLogPlayer(boost::asio::io_context& io, NmeaLogPlayerConfig config, FixHandler on_fix, LineHandler on_line = {},
+                FinishedHandler on_finished = {});
   ~NmeaLogPlayer();
   NmeaLogPlayer(const NmeaLogPlayer&) = delete;
   NmeaLogPlayer& operator=(const NmeaLogPlayer&) = delete;

@@ -27,8 +27,8 @@
 #include <boost/asio/serial_port.hpp>
 #include <boost/asio/steady_timer.hpp>
 
-#include "headingd/nmea/reconnect_delay.hpp"
 #include "headingd/nmea/counters.hpp"
+#include "headingd/nmea/reconnect_delay.hpp"
 #include "headingd/nmea/serial_epoch_assembler.hpp"
 #include "headingd/nmea/serial_gps_config.hpp"
 
@@ -45,11 +45,11 @@ enum class SerialGpsState {
 const char* serialGpsStateName(SerialGpsState s);
 
 struct SerialGpsCounters {
-  Counters parser;                 // bytes, lines, and every sentence outcome (counters.hpp)
-  EpochCounters epochs;            // fixes delivered, late sentences
-  std::uint64_t reads = 0;         // completed reads with data
-  std::uint64_t read_errors = 0;   // reads that failed with an error other than end of file
-  std::uint64_t disconnects = 0;   // the open device went away (EOF, read error, path changed)
+  Counters parser;                // bytes, lines, and every sentence outcome (counters.hpp)
+  EpochCounters epochs;           // fixes delivered, late sentences
+  std::uint64_t reads = 0;        // completed reads with data
+  std::uint64_t read_errors = 0;  // reads that failed with an error other than end of file
+  std::uint64_t disconnects = 0;  // the open device went away (EOF, read error, path changed)
   std::uint64_t open_attempts = 0;
   std::uint64_t reopen_attempts = 0;  // attempts after the first one
   std::uint64_t reopens = 0;          // successful opens after the first one

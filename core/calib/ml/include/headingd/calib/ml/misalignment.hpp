@@ -16,10 +16,10 @@ namespace headingd::calib {
 
 struct MisalignmentEstimate {
   core::Mat3 rotation = core::Mat3::Identity();  // R_D of eq. 25: D̂0 = D̃0 R_D (eq. 28a)
-  double field_down = 0.0;   // m_z of eq. 27 (NED: positive where the field dips down)
-  double dip_rad = 0.0;      // asin(m_z), eq. 28b
-  double rms_residual = 0.0; // √(mean of (m_z - v·m_b)²)
-  int iterations = 0;        // Gauss-Newton steps of the best start
+  double field_down = 0.0;                       // m_z of eq. 27 (NED: positive where the field dips down)
+  double dip_rad = 0.0;                          // asin(m_z), eq. 28b
+  double rms_residual = 0.0;                     // √(mean of (m_z - v·m_b)²)
+  int iterations = 0;                            // Gauss-Newton steps of the best start
 };
 
 // Gauss-Newton on SO(3) × R (R_Dᵀ ← exp([φ×]) R_Dᵀ, the deviation parametrisation K&S

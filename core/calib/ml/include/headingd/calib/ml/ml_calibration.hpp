@@ -36,7 +36,7 @@ struct MlCalibrationOptions {
   MlInitialOptions initial;  // field norm, stationary segment, ...
   MlGradient gradient = MlGradient::kAdjoint;
   int max_iterations = 500;
-  double function_tolerance = 1e-9;   // relative change of the cost that stops the search
+  double function_tolerance = 1e-9;  // relative change of the cost that stops the search
   double gradient_tolerance = 1e-8;
   double parameter_tolerance = 1e-10;
   int lbfgs_rank = 20;

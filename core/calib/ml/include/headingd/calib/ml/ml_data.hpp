@@ -12,11 +12,11 @@
 namespace headingd::calib {
 
 struct MlSample {
-  double dt_s = 0.0;  // since the previous sample (0 for the first and after a gap)
+  double dt_s = 0.0;                           // since the previous sample (0 for the first and after a gap)
   core::Vec3 gyro_rad_s = core::Vec3::Zero();  // the rate over (t - dt, t]
-  double gyro_noise_dt2_s2 = 0.0;  // Σ dt_i² of the gyro samples in this step (dt² for one)
+  double gyro_noise_dt2_s2 = 0.0;              // Σ dt_i² of the gyro samples in this step (dt² for one)
   core::Vec3 accel_m_s2 = core::Vec3::Zero();
-  core::Vec3 mag_unit = core::Vec3::Zero();    // µT / field norm
+  core::Vec3 mag_unit = core::Vec3::Zero();  // µT / field norm
   bool has_mag = false;
   // After decimation (MlDataOptions::decimation): accel_m_s2 and mag_unit are means over
   // the group's samples (those with a magnetometer for mag), each seen through the body's

@@ -36,10 +36,8 @@ using QuatT = Eigen::Quaternion<T>;
 // The value of a scalar without its derivatives (Jet::a), for reporting.
 inline double scalarPart(double x) { return x; }
 template <typename J>
-  requires requires(const J& j) { j.a; }
-double scalarPart(const J& j) {
-  return j.a;
-}
+requires requires(const J& j) { j.a; }
+double scalarPart(const J& j) { return j.a; }
 
 // [v×]: the matrix with [v×] w = v × w.
 template <typename T>
@@ -107,10 +105,10 @@ Mat3T<T> lowerInverse(const Mat3T<T>& L) {
 // What the EKF is told about the sensors: θ of K&S eq. 17 with m_n from the dip.
 template <typename T>
 struct MlModel {
-  Mat3T<T> D = Mat3T<T>::Identity();        // eq. 13, dimensionless
-  Vec3T<T> offset = Vec3T<T>::Zero();       // eq. 13, in units of the field norm
-  Vec3T<T> field_n = Vec3T<T>::UnitX();     // unit local field in NED, eq. 8b
-  Vec3T<T> gyro_bias = Vec3T<T>::Zero();    // eq. 15, rad/s
+  Mat3T<T> D = Mat3T<T>::Identity();          // eq. 13, dimensionless
+  Vec3T<T> offset = Vec3T<T>::Zero();         // eq. 13, in units of the field norm
+  Vec3T<T> field_n = Vec3T<T>::UnitX();       // unit local field in NED, eq. 8b
+  Vec3T<T> gyro_bias = Vec3T<T>::Zero();      // eq. 15, rad/s
   Mat3T<T> gyro_cov = Mat3T<T>::Identity();   // Σω, (rad/s)²
   Mat3T<T> accel_cov = Mat3T<T>::Identity();  // Σa, (m/s²)²
   Mat3T<T> mag_cov = Mat3T<T>::Identity();    // Σm, (field norm)²

@@ -42,19 +42,19 @@ struct MlInitialOptions {
 };
 
 struct MlInitialEstimate {
-  core::Mat3 D = core::Mat3::Identity();  // D̂0 = D̃0 R_D (eq. 28a)
+  core::Mat3 D = core::Mat3::Identity();      // D̂0 = D̃0 R_D (eq. 28a)
   core::Vec3 offset_uT = core::Vec3::Zero();  // o0 (eq. 24c)
-  double dip_rad = 0.0;                   // from m̂_z,0 (eq. 28b)
+  double dip_rad = 0.0;                       // from m̂_z,0 (eq. 28b)
   core::Vec3 gyro_bias_rad_s = core::Vec3::Zero();
-  core::Mat3 gyro_cov = core::Mat3::Identity();    // (rad/s)²
-  core::Mat3 accel_cov = core::Mat3::Identity();   // (m/s²)²
-  core::Mat3 mag_cov_uT2 = core::Mat3::Identity(); // µT²
+  core::Mat3 gyro_cov = core::Mat3::Identity();     // (rad/s)²
+  core::Mat3 accel_cov = core::Mat3::Identity();    // (m/s²)²
+  core::Mat3 mag_cov_uT2 = core::Mat3::Identity();  // µT²
   // Pieces, for the report.
-  core::Mat3 ellipsoid_D = core::Mat3::Identity();  // D̃0
-  core::Mat3 misalignment = core::Mat3::Identity(); // R_D
-  double misalignment_rms = 0.0;   // of eq. 27, in field units
-  int misalignment_minima = 0;     // distinct minima of eq. 27 found
-  bool misalignment_sign_chosen = false;  // the expected dip sign passed over a lower minimum
+  core::Mat3 ellipsoid_D = core::Mat3::Identity();   // D̃0
+  core::Mat3 misalignment = core::Mat3::Identity();  // R_D
+  double misalignment_rms = 0.0;                     // of eq. 27, in field units
+  int misalignment_minima = 0;                       // distinct minima of eq. 27 found
+  bool misalignment_sign_chosen = false;             // the expected dip sign passed over a lower minimum
   double ellipsoid_coverage = 0.0;
   double ellipsoid_residual_rms_uT = 0.0;
   double ellipsoid_condition_number = 0.0;

@@ -75,16 +75,17 @@ bool mlStartPredictor(const MlModel<T>& model, const MlData& data, MlEkf<T>& ekf
 template <typename T>
 bool mlPredictorStep(MlEkf<T>& ekf, const MlSample& s, T& cost, MlResidual* residual) {
   ekf.predict(s.gyro_rad_s, s.dt_s, s.gyro_noise_dt2_s2);
-  const InnovationTerm<T> a = s.accel_count > 1 ? ekf.updateAccelMean(s.accel_m_s2, s.accel_mean_rotation, s.accel_count)
-                                                : ekf.updateAccel(s.accel_m_s2);
+  const InnovationTerm<T> a = s.accel_count > 1
+                                  ? ekf.updateAccelMean(s.accel_m_s2, s.accel_mean_rotation, s.accel_count)
+                                  : ekf.updateAccel(s.accel_m_s2);
   if (!a.ok) return false;
   cost += a.cost;
   if (residual) {
     for (int k = 0; k < 3; ++k) residual->accel(k) = scalarPart(a.normalised(k));
   }
   if (s.has_mag) {
-    const InnovationTerm<T> m = s.mag_count > 1 ? ekf.updateMagMean(s.mag_unit, s.mag_mean_rotation, s.mag_count)
-                                                : ekf.updateMag(s.mag_unit);
+    const InnovationTerm<T> m =
+        s.mag_count > 1 ? ekf.updateMagMean(s.mag_unit, s.mag_mean_rotation, s.mag_count) : ekf.updateMag(s.mag_unit);
     if (!m.ok) return false;
     cost += m.cost;
     if (residual) {

@@ -108,7 +108,8 @@ class ReverseScalar {
     return ReverseScalar(value, ReverseTape::active()->push(x.index_, d, 0, 0.0));
   }
   // f(x, y) with ∂f/∂x = dx, ∂f/∂y = dy.
-  [[gnu::always_inline]] static ReverseScalar binary(double value, const ReverseScalar& x, double dx, const ReverseScalar& y, double dy) {
+  [[gnu::always_inline]] static ReverseScalar binary(double value, const ReverseScalar& x, double dx,
+                                                     const ReverseScalar& y, double dy) {
     if (x.isConstant()) return unary(value, y, dy);
     if (y.isConstant()) return unary(value, x, dx);
     return ReverseScalar(value, ReverseTape::active()->push(x.index_, dx, y.index_, dy));
@@ -166,7 +167,9 @@ inline ReverseScalar exp(const ReverseScalar& x) {
   const double e = std::exp(x.value());
   return ReverseScalar::unary(e, x, e);
 }
-inline ReverseScalar log(const ReverseScalar& x) { return ReverseScalar::unary(std::log(x.value()), x, 1.0 / x.value()); }
+inline ReverseScalar log(const ReverseScalar& x) {
+  return ReverseScalar::unary(std::log(x.value()), x, 1.0 / x.value());
+}
 inline ReverseScalar abs(const ReverseScalar& x) {
   return ReverseScalar::unary(std::abs(x.value()), x, x.value() < 0.0 ? -1.0 : 1.0);
 }

@@ -9,14 +9,14 @@
 namespace headingd::calib {
 
 struct StationaryStatistics {
-  std::size_t samples = 0;       // used (finite gyro and accelerometer)
-  std::size_t mag_samples = 0;   // of those, with a finite magnetometer reading
+  std::size_t samples = 0;                          // used (finite gyro and accelerometer)
+  std::size_t mag_samples = 0;                      // of those, with a finite magnetometer reading
   core::Vec3 gyro_bias_rad_s = core::Vec3::Zero();  // mean gyro: the body is at rest
   core::Mat3 gyro_cov = core::Mat3::Zero();         // (rad/s)²
   core::Vec3 accel_mean_m_s2 = core::Vec3::Zero();
-  core::Mat3 accel_cov = core::Mat3::Zero();        // (m/s²)²
+  core::Mat3 accel_cov = core::Mat3::Zero();  // (m/s²)²
   core::Vec3 mag_mean_uT = core::Vec3::Zero();
-  core::Mat3 mag_cov_uT2 = core::Mat3::Zero();      // µT²
+  core::Mat3 mag_cov_uT2 = core::Mat3::Zero();  // µT²
 };
 
 // Statistics of `stationary`. Samples with a non-finite value are left out (and not
