@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the test suite with sanitizers (gcc) and runs it. README.md, "Sanitizers and
-# fuzzing", says what runs where.
+# Builds the test suite with sanitizers (gcc) and runs it. docs/robustness.md, "Sanitizers
+# and fuzzing", says what runs where.
 #
 # Usage: sanitize.sh [asan|unit|tsan|all] [--jobs N]      (default: all)
 #   asan  AddressSanitizer + UndefinedBehaviorSanitizer, no recovery (the first report fails
@@ -22,7 +22,7 @@
 #                 their shadow memory are not part of it (and without KVM it takes minutes)
 #   package       installs the build tree's binaries as a Debian package on this machine:
 #                 instrumented binaries must not be installed
-#   selfcontained builds its own clone with its own flags (see the README)
+#   selfcontained builds its own clone with its own flags (docs/data.md, "Test data")
 #   fuzz          the fuzz targets are their own clang ASan+UBSan tree (tools/scripts/fuzz.sh)
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
