@@ -4,13 +4,10 @@
 #include <spdlog/spdlog.h>
 
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/daemon/can_imu_source.hpp"
-#include "headingd/daemon/clocks.hpp"
-#include "headingd/daemon/gpsd_gps_source.hpp"
-#include "headingd/daemon/realtime.hpp"
-#include "headingd/daemon/recording_files.hpp"
-#include "headingd/daemon/serial_gps_source.hpp"
-#include "headingd/daemon/source_registry.hpp"
+#include "headingd/daemon/recorder/recording_files.hpp"
+#include "headingd/daemon/sources/source_registry.hpp"
+#include "headingd/daemon/system/clocks.hpp"
+#include "headingd/daemon/system/realtime.hpp"
 #include "headingd/files/gzip_file.hpp"
 #include "headingd/recording/recording_format.hpp"
 
@@ -26,13 +23,6 @@ class RecorderLineSink final : public recording::LineSink {
  private:
   RecorderStream& stream_;
 };
-
-bool hasLiveSource(const SourceConfigs& configs) {
-  const auto* can = configs.find<CanSourceConfig>();
-  const auto* gps = configs.find<SerialGpsSourceConfig>();
-  const auto* gpsd = configs.find<GpsdGpsSourceConfig>();
-  return (can != nullptr && can->enabled) || (gps != nullptr && gps->enabled) || (gpsd != nullptr && gpsd->enabled);
-}
 
 }  // namespace
 
@@ -58,17 +48,9 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   // Each source gets its own rings (single producer each); see daemon/README.md, "Sources".
   const SourceConfigs& configs = config_.sources;
   makeRecorder();
-  SourceContext context{config_.imu_ring_capacity,
-                        config_.gps_ring_capacity,
-                        imu_rings_,
-                        gps_rings_,
-                        configs.playback,
-                        &playback_clock_,
-                        0,
-                        std::nullopt,
-                        recorder_ != nullptr ? &source_sinks_ : nullptr,
-                        std::nullopt,
-                        std::nullopt};
+  rings_.imu_capacity = config_.imu_ring_capacity;
+  rings_.gps_capacity = config_.gps_ring_capacity;
+  SourceContext context(rings_, configs.playback, &playback_clock_, recorder_ != nullptr ? &source_sinks_ : nullptr);
   sources_ = makeSources(configs, context);
   // The log sources play on one clock, which starts at the earliest first timestamp of the
   // logs (playback_clock.hpp).
@@ -140,22 +122,27 @@ void Daemon::start() {
     spdlog::warn("LCM URL {} has no ttl=0: messages may leave this machine", config_.lcm.url);
   }
   std::vector<SampleRing<ImuRingEntry>*> imu;
-  for (auto& r : imu_rings_) imu.push_back(r.get());
+  for (auto& r : rings_.imu) imu.push_back(r.get());
   std::vector<SampleRing<GpsRingEntry>*> gps;
-  for (auto& r : gps_rings_) gps.push_back(r.get());
+  for (auto& r : rings_.gps) gps.push_back(r.get());
   std::vector<Source*> sources;
   for (auto& s : sources_) sources.push_back(s.get());
   loop_ = std::make_unique<EstimatorLoop>(config_, wmm_.get(), imu, gps, sources, *publisher_, notifier_, *realtime_,
                                           std::move(calibration_));
   startRecorder();
-  if (recorder_ != nullptr) loop_->setRecorder(recorder_sinks_[2].get(), recorder_.get());
+  if (recorder_ != nullptr) {
+    recorder_output_ = std::make_unique<RecorderOutput>(*recorder_sinks_[2], *recorder_);
+    loop_->addSink(recorder_output_.get());
+  }
   if (nmea_out_ != nullptr) {
     nmea_out_->start();  // a port that is taken stops start-up here (exit status 1)
     // Files are a replay: THS says S (simulator) for them.
-    loop_->setNmeaOut(nmea_out_.get(), !hasLiveSource(config_.sources));
+    nmea_output_ =
+        std::make_unique<NmeaOutput>(config_.nmea_out, config_.rate_hz, *nmea_out_, !hasLiveSource(config_.sources));
+    loop_->addSink(nmea_output_.get());
   }
   if (config_.publish_on_imu) {
-    for (auto& r : imu_rings_) r->setDoorbell(&doorbell_);
+    for (auto& r : rings_.imu) r->setDoorbell(&doorbell_);
     loop_->setDoorbell(&doorbell_);
   }
   loop_thread_ = std::thread([this] { loop_->run(); });

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <string>
 
-#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/config/config.hpp"
 #include "headingd/daemon/daemon.hpp"
-#include "headingd/daemon/logging.hpp"
+#include "headingd/daemon/system/logging.hpp"
 
 namespace {
 

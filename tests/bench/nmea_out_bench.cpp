@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "headingd/core/angles.hpp"
-#include "headingd/daemon/nmea_out_sentences.hpp"
-#include "headingd/daemon/nmea_out_server.hpp"
+#include "headingd/daemon/outputs/nmea_out_sentences.hpp"
+#include "headingd/daemon/outputs/nmea_out_server.hpp"
 #include "headingd/nmea/heading_sentences.hpp"
 
 namespace {

@@ -1,10 +1,7 @@
 #pragma once
 // Shared by the calibration tests: the shipped WMM, simulator runs cached per configuration,
 // and the columns the calibration routines take.
-#include <fstream>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -12,17 +9,12 @@
 #include "headingd/core/imu_sample.hpp"
 #include "headingd/core/wmm.hpp"
 #include "headingd/sim/simulation.hpp"
+#include "wmm_file.hpp"
 
 namespace headingd::calib_test {
 
 inline const core::WorldMagneticModel& shippedWmm() {
-  static const core::WorldMagneticModel model = [] {
-    std::ifstream in(HEADINGD_CALIB_TEST_COF, std::ios::binary);
-    if (!in) throw std::runtime_error(HEADINGD_CALIB_TEST_COF ": cannot open");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return core::WorldMagneticModel(core::parseWmmCoefficients(text.str(), HEADINGD_CALIB_TEST_COF));
-  }();
+  static const core::WorldMagneticModel model = test::readWmmFile(HEADINGD_CALIB_TEST_COF);
   return model;
 }
 

@@ -42,7 +42,7 @@ inline can::CanFrame frame(std::uint32_t id, bool extended, std::initializer_lis
   can::CanFrame f;
   f.id = id;
   f.extended = extended;
-  f.kernel_time_ns = t_ns;
+  f.t_ns = t_ns;
   for (std::uint8_t b : bytes) f.data[f.len++] = b;
   return f;
 }

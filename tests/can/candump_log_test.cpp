@@ -14,7 +14,7 @@ namespace {
 TEST(CandumpLog, ParsesStandardExtendedRemoteAndErrorFrames) {
   auto a = parseCandumpLine("(1700000000.123456) can0 123#DEADBEEF");
   ASSERT_TRUE(a);
-  EXPECT_EQ(a->frame.kernel_time_ns, 1700000000123456000LL);
+  EXPECT_EQ(a->frame.t_ns, 1700000000123456000LL);
   EXPECT_EQ(a->interface, "can0");
   EXPECT_EQ(a->frame.id, 0x123u);
   EXPECT_FALSE(a->frame.extended);
@@ -96,8 +96,8 @@ TEST(CandumpLog, RejectsSignedAndOutOfRangeTimes) {
   }
   std::istringstream log("(1.000000) can0 123#00\n(-0.500000) can0 123#00\n(2.000000) can0 123#00\n");
   CandumpReader reader(log);
-  ASSERT_EQ(reader.next()->kernel_time_ns, 1'000'000'000);
-  ASSERT_EQ(reader.next()->kernel_time_ns, 2'000'000'000);
+  ASSERT_EQ(reader.next()->t_ns, 1'000'000'000);
+  ASSERT_EQ(reader.next()->t_ns, 2'000'000'000);
   EXPECT_FALSE(reader.next());
   EXPECT_EQ(reader.counters().bad_lines, 1u);
   EXPECT_EQ(reader.counters().first_bad_line, 2u);
@@ -120,7 +120,7 @@ TEST(CandumpLog, FormatParsesBack) {
   ASSERT_TRUE(back);
   EXPECT_EQ(back->frame.id, f.id);
   EXPECT_EQ(back->frame.len, 3);
-  EXPECT_EQ(back->frame.kernel_time_ns, 1700000000123456000LL);  // microseconds in the log
+  EXPECT_EQ(back->frame.t_ns, 1700000000123456000LL);  // microseconds in the log
   EXPECT_EQ(formatCandumpLine(test::frame(0x12, false, {}, 5'000'000'000LL), "vcan1"), "(5.000000) vcan1 012#");
   CanFrame err;
   err.error_frame = true;

@@ -39,7 +39,7 @@ class Fixture {
     codec_.encode(sampleAt(k), static_cast<std::uint64_t>(k), with_mag, frames);
     std::int64_t t = sampleAt(k).t_ns;
     for (auto& f : frames) {
-      f.kernel_time_ns = t;
+      f.t_ns = t;
       t += kSpacingNs;
     }
     return frames;
@@ -58,6 +58,15 @@ struct Collector {
   }
 };
 
+// An assembler on a configuration's frame set, and the samples it released.
+struct Assembly {
+  explicit Assembly(const char* config, bool wait_for_mag = true)
+      : fx(config, wait_for_mag), a(fx.codec(), fx.settings()) {}
+  Fixture fx;
+  EpochAssembler a;
+  Collector c;
+};
+
 void expectSampleNear(const core::ImuSample& got, const core::ImuSample& want, bool with_mag) {
   EXPECT_EQ(got.t_ns, want.t_ns);
   EXPECT_LT((got.gyro_rad_s - want.gyro_rad_s).cwiseAbs().maxCoeff(), 0.51e-4);
@@ -69,9 +78,8 @@ void expectSampleNear(const core::ImuSample& got, const core::ImuSample& want, b
 }
 
 TEST(EpochAssembler, CompleteEpochsBecomeSamplesAtTheFirstFrameTime) {
-  Fixture fx("can-headingd.toml");
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
+  Assembly assembly("can-headingd.toml");
+  auto& [fx, a, c] = assembly;
   for (int k = 0; k < 40; ++k) {
     for (const auto& f : fx.epoch(k)) {
       const AssembledSamples out = a.push(f);
@@ -88,14 +96,13 @@ TEST(EpochAssembler, CompleteEpochsBecomeSamplesAtTheFirstFrameTime) {
 }
 
 TEST(EpochAssembler, FramesInAnyOrder) {
-  Fixture fx("can-headingd.toml");
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
+  Assembly assembly("can-headingd.toml");
+  auto& [fx, a, c] = assembly;
   for (int k = 0; k < 6; ++k) {
     auto frames = fx.epoch(k);
     std::swap(frames[0], frames[2]);  // mag, accel, gyro
     for (std::size_t i = 0; i < frames.size(); ++i) {
-      frames[i].kernel_time_ns = sampleAt(k).t_ns + static_cast<std::int64_t>(i) * kSpacingNs;
+      frames[i].t_ns = sampleAt(k).t_ns + static_cast<std::int64_t>(i) * kSpacingNs;
       c.take(a.push(frames[i]));
     }
   }
@@ -105,9 +112,8 @@ TEST(EpochAssembler, FramesInAnyOrder) {
 }
 
 TEST(EpochAssembler, SlowerMagnetometerWaitingForIt) {
-  Fixture fx("can-headingd.toml", /*wait_for_mag=*/true);
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
+  Assembly assembly("can-headingd.toml", /*wait_for_mag=*/true);
+  auto& [fx, a, c] = assembly;
   for (int k = 0; k < 20; ++k) {
     for (const auto& f : fx.epoch(k, k % 4 == 0)) c.take(a.push(f));
   }
@@ -119,9 +125,8 @@ TEST(EpochAssembler, SlowerMagnetometerWaitingForIt) {
 }
 
 TEST(EpochAssembler, FlushReleasesAnEpochWithoutMagAfterTheWindow) {
-  Fixture fx("can-headingd.toml", true);
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
+  Assembly assembly("can-headingd.toml", true);
+  auto& [fx, a, c] = assembly;
   for (const auto& f : fx.epoch(0, false)) c.take(a.push(f));
   EXPECT_TRUE(c.samples.empty());
   c.take(a.flush(sampleAt(0).t_ns + 1'000'000));  // within the 2 ms window: keep waiting
@@ -132,9 +137,8 @@ TEST(EpochAssembler, FlushReleasesAnEpochWithoutMagAfterTheWindow) {
 }
 
 TEST(EpochAssembler, LateMagnetometerGoesToTheNextSample) {
-  Fixture fx("can-headingd.toml", /*wait_for_mag=*/false);
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
+  Assembly assembly("can-headingd.toml", /*wait_for_mag=*/false);
+  auto& [fx, a, c] = assembly;
   for (int k = 0; k < 3; ++k) {
     for (const auto& f : fx.epoch(k)) c.take(a.push(f));  // gyro, accel (released), then mag
   }
@@ -146,9 +150,8 @@ TEST(EpochAssembler, LateMagnetometerGoesToTheNextSample) {
 }
 
 TEST(EpochAssembler, LostFramesAreCountedNotInvented) {
-  Fixture fx("can-headingd.toml");
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
+  Assembly assembly("can-headingd.toml");
+  auto& [fx, a, c] = assembly;
   for (int k = 0; k < 10; ++k) {
     auto frames = fx.epoch(k);
     if (k == 4) frames.erase(frames.begin());      // gyro frame lost
@@ -165,9 +168,8 @@ TEST(EpochAssembler, LostFramesAreCountedNotInvented) {
 }
 
 TEST(EpochAssembler, CounterGapsAndDuplicates) {
-  Fixture fx("can-headingd.toml");
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
+  Assembly assembly("can-headingd.toml");
+  auto& [fx, a, c] = assembly;
   for (int k : {0, 1, 2, 6, 7}) {  // epochs 3, 4, 5 lost entirely
     for (const auto& f : fx.epoch(k)) c.take(a.push(f));
   }
@@ -192,7 +194,7 @@ TEST(EpochAssembler, RestartedStreamIsNotTakenForRepeatedFrames) {
     }
     if (restart) c.take(a.restartStream());
     for (auto f : fx.epoch(2)) {  // counter 2 again, a second later
-      f.kernel_time_ns += 1'000'000'000;
+      f.t_ns += 1'000'000'000;
       c.take(a.push(f));
     }
     c.take(a.finish());
@@ -272,9 +274,8 @@ TEST(EpochAssembler, MalformedFramesAreCounted) {
 }
 
 TEST(EpochAssembler, J1939ByTimeAnySourceAddressAndPriority) {
-  Fixture fx("can-openimu.toml", /*wait_for_mag=*/true);
-  EpochAssembler a(fx.codec(), fx.settings());
-  Collector c;
+  Assembly assembly("can-openimu.toml", /*wait_for_mag=*/true);
+  auto& [fx, a, c] = assembly;
   for (int k = 0; k < 10; ++k) {
     auto frames = fx.epoch(k, k % 2 == 0);
     for (auto& f : frames) {
@@ -329,7 +330,7 @@ TEST(EpochAssembler, RandomFrameSoupNeverCrashesAndBalancesCounters) {
     f.extended = next() % 16 == 0;
     f.len = static_cast<std::uint8_t>(next() % 16 == 0 ? next() % 9 : 8);
     for (auto& b : f.data) b = static_cast<std::uint8_t>(next());
-    f.kernel_time_ns = i * 1'000'000LL + static_cast<std::int64_t>(next() % 3'000'000);
+    f.t_ns = i * 1'000'000LL + static_cast<std::int64_t>(next() % 3'000'000);
     released += static_cast<std::uint64_t>(a.push(f).count);
   }
   released += static_cast<std::uint64_t>(a.finish().count);

@@ -56,7 +56,7 @@ TEST(SocketCanReceiverHost, MissingCanOrInterfaceIsReportedAndRetried) {
   settings.reconnect_initial = std::chrono::milliseconds(10);
   settings.reconnect_max = std::chrono::milliseconds(40);
   int frames = 0;
-  SocketCanReceiver receiver(io, settings, [&](const CanFrame&) { ++frames; });
+  SocketCanReceiver receiver(io, settings, [&](const CanFrame&, std::int64_t) { ++frames; });
   receiver.start();
   io.run_for(std::chrono::milliseconds(400));
   const ReceiverStatus s = receiver.status();

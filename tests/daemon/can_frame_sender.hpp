@@ -40,7 +40,7 @@ class CanFrameSender {
       t.frame.can_id = f.extended ? (f.id | CAN_EFF_FLAG) : f.id;
       t.frame.len = f.len;
       std::memcpy(t.frame.data, f.data.data(), f.len);
-      t.t_ns = f.kernel_time_ns;
+      t.t_ns = f.t_ns;
       frames_.push_back(t);
     }
     if (frames_.empty()) throw std::runtime_error("no frames in " + candump_log);

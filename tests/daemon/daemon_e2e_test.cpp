@@ -19,18 +19,14 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::LcmCollector;
-using test::lcmUrl;
-using test::TempDir;
-using test::waitUntil;
+using namespace test;
 
 // lcm-gen declares its constants without a definition: copies that EXPECT_EQ may bind to.
 constexpr std::int8_t kNone = headingd::heading_t::VALIDITY_NONE;
 constexpr std::int8_t kFresh = headingd::heading_t::VALIDITY_FRESH;
 constexpr std::int8_t kStale = headingd::heading_t::VALIDITY_STALE;
 
-constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
+// The demo trial (kDemoImuCsv): its samples and its length.
 constexpr std::size_t kTrialSamples = 59212;
 constexpr double kTrialSeconds = 207.2385;
 
@@ -57,7 +53,7 @@ struct ReplayRow {
 std::map<std::int64_t, ReplayRow> runReplay(const TempDir& dir) {
   const std::string out = dir.file("replay.csv");
   const std::string cmd =
-      std::string(HEADINGD_REPLAY_BIN) + " --imu-csv " + kTrial + " --out " + out + " 2>" + dir.file("replay.err");
+      std::string(HEADINGD_REPLAY_BIN) + " --imu-csv " + kDemoImuCsv + " --out " + out + " 2>" + dir.file("replay.err");
   EXPECT_EQ(std::system(cmd.c_str()), 0) << test::readFile(dir.file("replay.err"));
   std::map<std::int64_t, ReplayRow> rows;
   std::istringstream in(test::readFile(out));
@@ -79,7 +75,7 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
   TempDir dir;
   const std::string url = lcmUrl(0);
   const std::string config =
-      dir.write("e2e.toml", configText(url, "[imu_csv]\nenabled = true\npath = \"" + std::string(kTrial) +
+      dir.write("e2e.toml", configText(url, "[imu_csv]\nenabled = true\npath = \"" + std::string(kDemoImuCsv) +
                                                 "\"\nspeed = 10.0\nat_end = \"exit\"\n"));
   LcmCollector lcm(url);
   const double start = steadyNow();
@@ -314,8 +310,8 @@ TEST(DaemonEndToEnd, NotifiesSystemdPingsTheWatchdogAndStopsWithinOneSecondOnSig
   TempDir dir;
   NotifySocket notify(dir.file("notify"));
   const std::string url = lcmUrl(3);
-  const std::string config =
-      dir.write("notify.toml", configText(url, "[imu_csv]\nenabled = true\npath = \"" + std::string(kTrial) + "\"\n"));
+  const std::string config = dir.write(
+      "notify.toml", configText(url, "[imu_csv]\nenabled = true\npath = \"" + std::string(kDemoImuCsv) + "\"\n"));
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"),
                       {"NOTIFY_SOCKET=" + dir.file("notify"), "WATCHDOG_USEC=200000"});
   EXPECT_TRUE(waitUntil([&] { return notify.count("READY=1") == 1; }, 3s)) << test::readFile(dir.file("err"));
@@ -398,7 +394,7 @@ TEST(DaemonEndToEnd, CalibrationIsAppliedAndABadReloadKeepsIt) {
   const std::string url = lcmUrl(7);
   dir.write("calib.toml",
             "[magnetometer]\noffset_uT = [1.0, -2.0, 3.0]\n[gyroscope]\nbias_rad_s = [0.01, 0.02, -0.03]\n");
-  const std::string source = "[imu_csv]\nenabled = true\npath = \"" + std::string(kTrial) + "\"\nspeed = 2.0\n";
+  const std::string source = "[imu_csv]\nenabled = true\npath = \"" + std::string(kDemoImuCsv) + "\"\nspeed = 2.0\n";
   const std::string plain = dir.write("plain.toml", configText(url, source));
   const std::string calibrated =
       dir.write("calibrated.toml", configText(url, "[daemon]\ncalibration = \"calib.toml\"\n" + source));

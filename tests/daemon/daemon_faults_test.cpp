@@ -25,16 +25,7 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::counter;
-using test::findSource;
-using test::kDemoNmea;
-using test::LcmCollector;
-using test::lcmUrl;
-using test::statusCounter;
-using test::waitUntil;
-
-constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
+using namespace test;
 
 void printCounters(const char* when, const headingd::source_status_t& s) {
   std::fprintf(stderr, "%s: %s %s (%s):", when, s.name.c_str(), s.state.c_str(), s.last_error.c_str());
@@ -59,7 +50,7 @@ class DaemonFaults : public test::DaemonUnderFault {
  protected:
   void startDaemon(const std::string& gps_device, const std::string& extra = "") {
     std::string toml = "[daemon]\nimu_timeout_s = 0.5\n[lcm]\nurl = \"" + url_ +
-                       "\"\n[imu_csv]\nenabled = true\npath = \"" + kTrial + "\"\ntime_axis = \"monotonic\"\n";
+                       "\"\n[imu_csv]\nenabled = true\npath = \"" + kDemoImuCsv + "\"\ntime_axis = \"monotonic\"\n";
     if (!gps_device.empty()) {
       toml += "[gps]\ndevice = \"" + gps_device +
               "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\nreopen_backoff_max_s = 0.2\n";

@@ -26,11 +26,7 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::counter;
-using test::LcmCollector;
-using test::statusCounter;
-using test::waitUntil;
+using namespace test;
 
 constexpr int kRows = 2857;  // the first 10 s of BROAD trial 05 (286 Hz, three frames a sample)
 const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0";  // alone in the VM's network
@@ -77,16 +73,24 @@ class DaemonFaultsVm : public test::DaemonUnderFault {
         << daemonLog();
   }
 
+  // Starts the daemon (startDaemon, with `extra`) and the bus (imu.log onto vcan0 in a loop);
+  // returns the STATUS after 2 s of frames, printed as `label`.
+  headingd::status_t startSending(const char* label, const std::string& extra = "") {
+    startDaemon(extra);
+    bus_.emplace(dir_.file("imu.log"), "vcan0");
+    bus_->start();
+    std::this_thread::sleep_for(2s);
+    const headingd::status_t before = nextStatus();
+    printCanCounters(label, before);
+    return before;
+  }
+
   std::string can_table_;
+  std::optional<test::CanFrameSender> bus_;
 };
 
 TEST_F(DaemonFaultsVm, InterfaceDownAndUpIsWaitedOutCountedAndReceivingResumes) {
-  startDaemon();
-  test::CanFrameSender bus(dir_.file("imu.log"), "vcan0");
-  bus.start();
-  std::this_thread::sleep_for(2s);
-  const headingd::status_t before = nextStatus();
-  printCanCounters("before down", before);
+  const headingd::status_t before = startSending("before down");
   ASSERT_EQ(ip("link set vcan0 down"), 0);
   const bool lost = waitUntil([&] { return canSource(lastStatus())->state != "running"; }, 5s);
   std::this_thread::sleep_for(2s);
@@ -103,9 +107,9 @@ TEST_F(DaemonFaultsVm, InterfaceDownAndUpIsWaitedOutCountedAndReceivingResumes) 
       20s);
   const headingd::status_t after = nextStatus();
   printCanCounters("after up", after);
-  bus.stop();
+  bus_->stop();
   std::fprintf(stderr, "sender: %llu frames sent, %llu refused while down\n",
-               static_cast<unsigned long long>(bus.sent()), static_cast<unsigned long long>(bus.sendErrors()));
+               static_cast<unsigned long long>(bus_->sent()), static_cast<unsigned long long>(bus_->sendErrors()));
 
   EXPECT_TRUE(lost) << "the CAN source never left running";
   EXPECT_EQ(canSource(down)->state, "waiting");
@@ -116,7 +120,7 @@ TEST_F(DaemonFaultsVm, InterfaceDownAndUpIsWaitedOutCountedAndReceivingResumes) 
   EXPECT_EQ(counter(*can, "times_lost"), 1);
   EXPECT_EQ(counter(*can, "times_up"), 2);
   EXPECT_GE(counter(*can, "read_errors") + counter(*can, "open_failures"), 1);
-  EXPECT_GT(bus.sendErrors(), 0u);
+  EXPECT_GT(bus_->sendErrors(), 0u);
   EXPECT_EQ(after.state, "ok") << after.reason;
   const auto heading = lcm_->heading();
   ASSERT_FALSE(heading.empty());
@@ -128,12 +132,9 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
   constexpr int kRingCapacity = 64;
   // The estimator thread under SCHED_FIFO, as the shipped unit may run it (root in the VM):
   // the flood's reader thread and the sender must not starve it.
-  startDaemon("[rings]\nimu_capacity = " + std::to_string(kRingCapacity) + "\n[realtime]\nsched_fifo_priority = 50\n");
-  test::CanFrameSender bus(dir_.file("imu.log"), "vcan0");
-  bus.start();
-  std::this_thread::sleep_for(2s);
-  const headingd::status_t before = nextStatus();
-  printCanCounters("before flood", before);
+  const headingd::status_t before =
+      startSending("before flood", "[rings]\nimu_capacity = " + std::to_string(kRingCapacity) +
+                                       "\n[realtime]\nsched_fifo_priority = 50\n");
   // The flood's window on the wall clock, which HEADING's utime (publish time) is on: the count
   // below is of what the daemon published then, not of when this process, starved by the flood
   // on the emulated CPUs, got round to receiving it.
@@ -141,23 +142,23 @@ TEST_F(DaemonFaultsVm, FloodBeyondTheRingIsDroppedAndCountedAndTheEstimatorKeeps
     return std::chrono::duration<double, std::micro>(std::chrono::system_clock::now().time_since_epoch()).count();
   };
   const double flood_start_us = wallUs();
-  bus.setFlood(true);
+  bus_->setFlood(true);
   std::this_thread::sleep_for(3s);
-  bus.setFlood(false);
+  bus_->setFlood(false);
   const double flood_end_us = wallUs();
   const headingd::status_t during = nextStatus();
   printCanCounters("flood", during);
   std::this_thread::sleep_for(2s);
   const headingd::status_t paced_again = nextStatus();
-  bus.stop();
+  bus_->stop();
   std::this_thread::sleep_for(500ms);  // the last frames through
   const headingd::status_t after = nextStatus();
   printCanCounters("after flood", after);
 
   // Every frame the bus carried was either received or counted as dropped by the kernel.
   const auto* can = canSource(after);
-  std::fprintf(stderr, "sender: %llu frames sent\n", static_cast<unsigned long long>(bus.sent()));
-  EXPECT_EQ(static_cast<std::uint64_t>(counter(*can, "frames") + counter(*can, "kernel_drops")), bus.sent());
+  std::fprintf(stderr, "sender: %llu frames sent\n", static_cast<unsigned long long>(bus_->sent()));
+  EXPECT_EQ(static_cast<std::uint64_t>(counter(*can, "frames") + counter(*can, "kernel_drops")), bus_->sent());
   // Every sample assembled was either pushed or counted as dropped at the full ring; the ring
   // and the source agree; the ring filled, and no further.
   const auto& ring = after.rings[0];
@@ -221,18 +222,13 @@ bool stepRealtime(std::int64_t by_ns) {
 TEST_F(DaemonFaultsVm, WallClockSteppedAnHourForwardAndBackChangesUtimeButNotTheEstimate) {
   if (!inThrowawayVm()) GTEST_SKIP() << "steps CLOCK_REALTIME: only in the VM of vm-run.sh (HEADINGD_VM=force)";
   constexpr std::int64_t kHourNs = 3600LL * 1'000'000'000;
-  startDaemon();
-  test::CanFrameSender bus(dir_.file("imu.log"), "vcan0");
-  bus.start();
-  std::this_thread::sleep_for(2s);
-  const headingd::status_t before = nextStatus();
-  printCanCounters("before the steps", before);
+  const headingd::status_t before = startSending("before the steps");
   ASSERT_TRUE(stepRealtime(kHourNs)) << "clock_settime: " << std::strerror(errno);
   std::this_thread::sleep_for(2500ms);
   ASSERT_TRUE(stepRealtime(-kHourNs)) << "clock_settime: " << std::strerror(errno);
   std::this_thread::sleep_for(2500ms);
   const headingd::status_t still = nextStatus();
-  bus.stop();
+  bus_->stop();
   std::this_thread::sleep_for(300ms);
   const headingd::status_t after = nextStatus();
   printCanCounters("after the steps", after);

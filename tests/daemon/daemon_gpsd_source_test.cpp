@@ -24,15 +24,8 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::counter;
-using test::findSource;
-using test::LcmCollector;
-using test::lcmUrl;
-using test::waitUntil;
+using namespace test;
 
-constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
-constexpr const char* kCapture = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
 using core::kDegPerRad;
 
 std::optional<headingd::source_status_t> lastSource(const LcmCollector& lcm, const std::string& kind) {
@@ -47,13 +40,13 @@ int testPort(int offset) { return 30000 + (getpid() % 10000) * 2 + offset; }
 
 std::string daemonConfig(const std::string& url, const std::string& gps_table) {
   return "[daemon]\nstatus_period_s = 0.25\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
-         "\"\n[recorder]\nenabled = false\n[imu_csv]\nenabled = true\npath = \"" + kTrial +
+         "\"\n[recorder]\nenabled = false\n[imu_csv]\nenabled = true\npath = \"" + kDemoImuCsv +
          "\"\ntime_axis = \"monotonic\"\n[gps]\n" + gps_table;
 }
 
 // The first `epochs` epochs of the capture, each its sentences (GGA, RMC, VTG: a GGA starts one).
 std::vector<std::string> captureEpochs(std::size_t epochs) {
-  std::ifstream in(kCapture);
+  std::ifstream in(kDemoNmea);
   std::vector<std::string> out;
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] == '#') continue;

@@ -26,8 +26,7 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::LcmCollector;
+using namespace test;
 
 using core::kDegPerRad;
 constexpr int kSeconds = 90;
@@ -36,18 +35,9 @@ constexpr int kRows = kSeconds * kImuRateHz + 1;
 constexpr double kCompareFromS = 20.0;  // after the first GPS fixes and the standing start
 // Thresholds on |true heading - truth| over the compared estimates (deg). Measured in the VM:
 // RMS 3.0 and 6.7, p95 6.0 and 12.0 in two runs; headingd-replay on the same rows and NMEA
-// offline: RMS 3.8, p95 6.5 (daemon/README.md).
+// offline: RMS 3.8, p95 6.5 (docs/accuracy.md, "The daemon end to end").
 constexpr double kMaxRmsErrorDeg = 9.0;
 constexpr double kMaxP95ErrorDeg = 15.0;
-
-using test::counter;
-
-const headingd::source_status_t* findSource(const headingd::status_t& m, const std::string& kind) {
-  for (const auto& s : m.sources) {
-    if (s.kind == kind) return &s;
-  }
-  return nullptr;
-}
 
 std::vector<std::vector<std::string>> readCsv(const std::string& path) {
   std::vector<std::vector<std::string>> rows;
@@ -69,47 +59,37 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-TEST(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
-  // Needs a vcan interface: CTest runs this binary inside tools/scripts/vm-run.sh (this
-  // host's kernel has no CAN); run by hand without it, it says so instead of failing.
-  if (if_nametoindex("vcan0") == 0) GTEST_SKIP() << "no vcan0: run through tools/scripts/vm-run.sh";
-  test::TempDir dir;
+using DaemonHil = OnVcan;
 
+TEST_F(DaemonHil, VcanImuAndPtyGpsFromASimulatedWalkGiveTheTrueHeading) {
   // The simulated walk, cut to kSeconds: IMU rows, truth rows, GPS epochs (GGA, RMC, VTG each).
-  const std::string can_table =
-      test::simulatedWalkOnVcan(dir, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN, HEADINGD_CONFIG_DIR, kRows);
-  const std::vector<std::string> epochs = test::nmeaEpochs(dir.file("sim/gps.nmea"), kSeconds);
+  const auto [can_table, epochs] = test::simulatedWalkOnVcan(dir_, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN,
+                                                             HEADINGD_CONFIG_DIR, kRows, kSeconds);
   ASSERT_GE(epochs.size(), static_cast<std::size_t>(kSeconds));
-  const auto truth = readCsv(dir.file("sim/truth.csv"));
+  const auto truth = readCsv(dir_.file("sim/truth.csv"));
   ASSERT_GT(truth.size(), static_cast<std::size_t>(kRows));
   ASSERT_EQ(truth[0][1], "heading_true_deg");
 
   headingd::test::PtyPair gps;
   const std::string url = "udpm://239.255.76.67:7667?ttl=0";  // alone in the VM's namespace
-  const std::string config = dir.write(
+  const std::string config = dir_.write(
       "hil.toml", "[daemon]\nimu_timeout_s = 0.5\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" +
                       url + "\"\n" + can_table + "\n[gps]\nenabled = true\ndevice = \"" + gps.slavePath() +
                       "\"\nbaud = 9600\n");
   LcmCollector lcm(url);
-  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir_.file("out"), dir_.file("err"));
   for (int i = 0; i < 200 && lcm.status().empty(); ++i) std::this_thread::sleep_for(50ms);
-  ASSERT_FALSE(lcm.status().empty()) << test::readFile(dir.file("err"));
+  ASSERT_FALSE(lcm.status().empty()) << test::readFile(dir_.file("err"));
 
-  ChildProcess player({"/usr/bin/canplayer", "-I", dir.file("imu.log"), "vcan0=vcan0"}, dir.file("player.out"),
-                      dir.file("player.err"));
+  ChildProcess player({"/usr/bin/canplayer", "-I", dir_.file("imu.log"), "vcan0=vcan0"}, dir_.file("player.out"),
+                      dir_.file("player.err"));
   // The GPS starts with the first IMU sample the daemon publishes: epoch j (IMU time j s) is
   // written at j s after it, at line rate, so it arrives ~0.25 s after its time, as from a receiver.
   for (int i = 0; i < 400 && lcm.imu().empty(); ++i) std::this_thread::sleep_for(25ms);
-  ASSERT_FALSE(lcm.imu().empty()) << "no IMU message: " << test::readFile(dir.file("err"));
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int j = 0; j < kSeconds; ++j) {
-    std::this_thread::sleep_until(t0 + std::chrono::seconds(j));
-    const std::string& e = epochs[static_cast<std::size_t>(j)];
-    gps.writePaced({reinterpret_cast<const std::uint8_t*>(e.data()), e.size()},
-                   headingd::test::lineBytesPerSecond(9600));
-  }
-  EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir.file("player.err"));
-  test::finishVcanRun(dir, daemon, lcm, 3s);
+  ASSERT_FALSE(lcm.imu().empty()) << "no IMU message: " << test::readFile(dir_.file("err"));
+  test::writeOneEpochPerSecond(gps, epochs, kSeconds, headingd::test::lineBytesPerSecond(9600));
+  EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir_.file("player.err"));
+  test::finishVcanRun(dir_, daemon, lcm, 3s);
 
   // Sources: every epoch of the capture became one sample, every GPS epoch one fix.
   const auto status = lcm.status();

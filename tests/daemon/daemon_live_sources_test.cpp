@@ -23,14 +23,8 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::counter;
-using test::findSource;
-using test::LcmCollector;
-using test::lcmUrl;
-using test::waitUntil;
+using namespace test;
 
-constexpr const char* kTrial = HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
 using core::kDegPerRad;
 
 // mt3339.log: a MediaTek receiver in Oregon (44.07 N, 121.31 W), 30 one-second epochs with
@@ -43,7 +37,7 @@ TEST(DaemonLiveSources, SerialGpsOnAPtyFeedsGpsMessagesAndTheWmmDeclination) {
   const std::string url = lcmUrl(10);
   const std::string config =
       dir.write("live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
-                                 "\"\n[imu_csv]\nenabled = true\npath = \"" + kTrial +
+                                 "\"\n[imu_csv]\nenabled = true\npath = \"" + kDemoImuCsv +
                                  "\"\ntime_axis = \"monotonic\"\n[gps]\ndevice = \"" + link +
                                  "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n");
   LcmCollector lcm(url);
@@ -112,7 +106,7 @@ TEST(DaemonLiveSources, SerialGpsHeldByAnotherProgramIsReportedByNameAndTakenWhe
   const std::string url = lcmUrl(12);
   const std::string config =
       dir.write("live.toml", "[daemon]\nstatus_period_s = 0.2\n[lcm]\nurl = \"" + url +
-                                 "\"\n[imu_csv]\nenabled = true\npath = \"" + kTrial +
+                                 "\"\n[imu_csv]\nenabled = true\npath = \"" + kDemoImuCsv +
                                  "\"\ntime_axis = \"monotonic\"\n[gps]\ndevice = \"" + link +
                                  "\"\nbaud = 9600\nepoch_idle_s = 0.1\nreopen_backoff_initial_s = 0.05\n"
                                  "reopen_backoff_max_s = 0.2\n");

@@ -29,11 +29,7 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::LcmCollector;
-using test::lcmUrl;
-using test::TempDir;
-using test::waitUntil;
+using namespace test;
 
 constexpr int kNmeaPort = 10110;
 using core::kDegPerRad;

@@ -18,17 +18,13 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::LcmCollector;
-using test::lcmUrl;
-using test::TempDir;
-using test::waitUntil;
+using namespace test;
 
 // The daemon's defaults, an IMU file played at real time (its thread reads at real-time pace,
 // so it gets the driver priority) and STATUS five times a second. Short: a few seconds.
 std::string defaultsConfig(const std::string& url) {
   return "[lcm]\nurl = \"" + url + "\"\n[daemon]\nstatus_period_s = 0.2\n[imu_csv]\nenabled = true\npath = \"" +
-         std::string(HEADINGD_CONFIG_DIR) + "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz\"\n";
+         kDemoImuCsv + "\"\n";
 }
 
 struct ThreadScheduling {
@@ -187,7 +183,7 @@ TEST(DaemonRealtime, PublishOnImuSendsAHeadingForEachSampleAsItArrives) {
   const std::string url = lcmUrl(23);
   const std::string config = dir.write(
       "imu.toml", "[lcm]\nurl = \"" + url + "\"\n[daemon]\npublish = \"imu\"\n[imu_csv]\nenabled = true\npath = \"" +
-                      std::string(HEADINGD_CONFIG_DIR) + "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz\"\n");
+                      kDemoImuCsv + "\"\n");
   LcmCollector lcm(url);
   ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
   ASSERT_TRUE(waitUntil([&] { return lcm.imu().size() >= 500; }, 5s)) << test::readFile(dir.file("err"));

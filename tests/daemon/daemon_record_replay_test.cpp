@@ -49,51 +49,41 @@ void expectAllEqual(const char* what, const test::EstimateMessages& published, c
   EXPECT_EQ(c.equal, c.compared) << what << ": first difference at sample_utime " << c.first_unequal_sample_utime;
 }
 
-TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
-  // Needs a vcan interface: CTest runs this binary inside tools/scripts/vm-run.sh (this
-  // host's kernel has no CAN); run by hand without it, it says so instead of failing.
-  if (if_nametoindex("vcan0") == 0) GTEST_SKIP() << "no vcan0: run through tools/scripts/vm-run.sh";
-  test::TempDir dir;
+using DaemonRecordReplay = test::OnVcan;
 
+TEST_F(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
   // Inputs: the start of a simulated walk as CAN frames and NMEA epochs.
-  const std::string can_table =
-      test::simulatedWalkOnVcan(dir, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN, HEADINGD_CONFIG_DIR, kRows);
-  const std::vector<std::string> epochs = test::nmeaEpochs(dir.file("sim/gps.nmea"), kSeconds);
+  const auto [can_table, epochs] = test::simulatedWalkOnVcan(dir_, HEADINGD_SIM_BIN, HEADINGD_CANDUMP_FROM_CSV_BIN,
+                                                             HEADINGD_CONFIG_DIR, kRows, kSeconds);
   ASSERT_GE(epochs.size(), static_cast<std::size_t>(kSeconds));
 
   // Live, recorded twice: by the black box (inputs) and by lcm-logger (outputs).
   headingd::test::PtyPair gps;
   const std::string url = "udpm://239.255.76.67:7667?ttl=0";  // alone in the VM's namespace
   const std::string config =
-      dir.write("live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
-                                 "\"\n" + can_table + "\n[gps]\nenabled = true\ndevice = \"" + gps.slavePath() +
-                                 "\"\nbaud = 9600\n[recorder]\ndir = \"" + dir.file("recordings") + "\"\n" +
-                                 // A place without a date: the daemon takes the system's, and the recording must
-                                 // carry the one it took for the replays to be bit-exact.
-                                 "[place]\nlatitude_deg = 59.33\nlongitude_deg = 18.07\n");
-  ChildProcess logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", dir.file("live.lcm")},
-                      dir.file("logger.out"), dir.file("logger.err"));
+      dir_.write("live.toml", "[daemon]\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
+                                  "\"\n" + can_table + "\n[gps]\nenabled = true\ndevice = \"" + gps.slavePath() +
+                                  "\"\nbaud = 9600\n[recorder]\ndir = \"" + dir_.file("recordings") + "\"\n" +
+                                  // A place without a date: the daemon takes the system's, and the recording must
+                                  // carry the one it took for the replays to be bit-exact.
+                                  "[place]\nlatitude_deg = 59.33\nlongitude_deg = 18.07\n");
+  ChildProcess logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", dir_.file("live.lcm")},
+                      dir_.file("logger.out"), dir_.file("logger.err"));
   test::LcmCollector lcm(url);
-  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
-  ASSERT_TRUE(test::waitUntil([&] { return !lcm.status().empty(); }, 10s)) << test::readFile(dir.file("err"));
-  ChildProcess player({"/usr/bin/canplayer", "-I", dir.file("imu.log"), "vcan0=vcan0"}, dir.file("player.out"),
-                      dir.file("player.err"));
-  ASSERT_TRUE(test::waitUntil([&] { return !lcm.imu().empty(); }, 10s)) << test::readFile(dir.file("err"));
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int j = 0; j < kSeconds; ++j) {
-    std::this_thread::sleep_until(t0 + std::chrono::seconds(j));
-    const std::string& e = epochs[static_cast<std::size_t>(j)];
-    gps.writePaced({reinterpret_cast<const std::uint8_t*>(e.data()), e.size()},
-                   headingd::test::lineBytesPerSecond(9600));
-  }
-  EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir.file("player.err"));
-  test::finishVcanRun(dir, daemon, lcm, 3s);
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir_.file("out"), dir_.file("err"));
+  ASSERT_TRUE(test::waitUntil([&] { return !lcm.status().empty(); }, 10s)) << test::readFile(dir_.file("err"));
+  ChildProcess player({"/usr/bin/canplayer", "-I", dir_.file("imu.log"), "vcan0=vcan0"}, dir_.file("player.out"),
+                      dir_.file("player.err"));
+  ASSERT_TRUE(test::waitUntil([&] { return !lcm.imu().empty(); }, 10s)) << test::readFile(dir_.file("err"));
+  test::writeOneEpochPerSecond(gps, epochs, kSeconds, headingd::test::lineBytesPerSecond(9600));
+  EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir_.file("player.err"));
+  test::finishVcanRun(dir_, daemon, lcm, 3s);
   std::this_thread::sleep_for(500ms);
   logger.signal(SIGINT);
-  EXPECT_EQ(logger.waitFor(5s), 0) << test::readFile(dir.file("logger.err"));
+  EXPECT_EQ(logger.waitFor(5s), 0) << test::readFile(dir_.file("logger.err"));
 
-  const std::string recording = onlySubfolder(dir.file("recordings"));
-  ASSERT_FALSE(recording.empty()) << "no recording folder: " << test::readFile(dir.file("err"));
+  const std::string recording = onlySubfolder(dir_.file("recordings"));
+  ASSERT_FALSE(recording.empty()) << "no recording folder: " << test::readFile(dir_.file("err"));
   if (const char* keep = std::getenv("HEADINGD_KEEP_RECORDING")) {
     std::filesystem::copy(recording, keep, std::filesystem::copy_options::recursive);
   }
@@ -102,10 +92,10 @@ TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
       << "the recording does not carry the place's date";
 
   // Replay 1: every state the estimator went through.
-  run(std::string(HEADINGD_REPLAY_BIN) + " --recording " + recording + " --lcm-log " + dir.file("states.lcm") +
-      " --out " + dir.file("states.csv") + " 2> " + dir.file("replay.err"));
-  std::fprintf(stderr, "%s", test::readFile(dir.file("replay.err")).c_str());
-  EXPECT_NE(test::readFile(dir.file("replay.err")).find("\"recording_complete\":true"), std::string::npos);
+  run(std::string(HEADINGD_REPLAY_BIN) + " --recording " + recording + " --lcm-log " + dir_.file("states.lcm") +
+      " --out " + dir_.file("states.csv") + " 2> " + dir_.file("replay.err"));
+  std::fprintf(stderr, "%s", test::readFile(dir_.file("replay.err")).c_str());
+  EXPECT_NE(test::readFile(dir_.file("replay.err")).find("\"recording_complete\":true"), std::string::npos);
 
   // Replay 2: the daemon on the recording's own replay configuration, at 4x.
   {
@@ -113,33 +103,33 @@ TEST(DaemonRecordReplay, ALiveRunReplaysBitForBitBothWays) {
     replay_toml = std::regex_replace(replay_toml, std::regex("speed = 1\\.0"), "speed = 4.0");
     std::ofstream(recording + "/replay-4x.toml") << replay_toml;
   }
-  ChildProcess replay_logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", dir.file("replay.lcm")},
-                             dir.file("rlogger.out"), dir.file("rlogger.err"));
+  ChildProcess replay_logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", dir_.file("replay.lcm")},
+                             dir_.file("rlogger.out"), dir_.file("rlogger.err"));
   std::this_thread::sleep_for(300ms);
-  ChildProcess replay_daemon({HEADINGD_BIN, "--config", recording + "/replay-4x.toml"}, dir.file("rout"),
-                             dir.file("rerr"));
-  EXPECT_EQ(replay_daemon.waitFor(60s), 0) << test::readFile(dir.file("rerr"));
+  ChildProcess replay_daemon({HEADINGD_BIN, "--config", recording + "/replay-4x.toml"}, dir_.file("rout"),
+                             dir_.file("rerr"));
+  EXPECT_EQ(replay_daemon.waitFor(60s), 0) << test::readFile(dir_.file("rerr"));
   std::this_thread::sleep_for(500ms);
   replay_logger.signal(SIGINT);
-  EXPECT_EQ(replay_logger.waitFor(5s), 0) << test::readFile(dir.file("rlogger.err"));
+  EXPECT_EQ(replay_logger.waitFor(5s), 0) << test::readFile(dir_.file("rlogger.err"));
 
-  const auto states_heading = test::readEstimates<headingd::heading_t>(dir.file("states.lcm"), "HEADING");
-  const auto states_attitude = test::readEstimates<headingd::attitude_t>(dir.file("states.lcm"), "ATTITUDE");
+  const auto states_heading = test::readEstimates<headingd::heading_t>(dir_.file("states.lcm"), "HEADING");
+  const auto states_attitude = test::readEstimates<headingd::attitude_t>(dir_.file("states.lcm"), "ATTITUDE");
   // Every state: one after each IMU sample and each GPS epoch.
   EXPECT_GE(states_heading.messages, static_cast<std::size_t>(kRows + kSeconds));
   // Live: 100 Hz for about kSeconds, less the ticks a slow VM misses (plain emulation under
   // load missed half of them); the floor only makes sure that there was something to compare.
   const std::size_t live_at_least = static_cast<std::size_t>(kSeconds) * 10;
-  expectAllEqual("live HEADING", test::readEstimates<headingd::heading_t>(dir.file("live.lcm"), "HEADING"),
+  expectAllEqual("live HEADING", test::readEstimates<headingd::heading_t>(dir_.file("live.lcm"), "HEADING"),
                  states_heading, live_at_least);
-  expectAllEqual("live ATTITUDE", test::readEstimates<headingd::attitude_t>(dir.file("live.lcm"), "ATTITUDE"),
+  expectAllEqual("live ATTITUDE", test::readEstimates<headingd::attitude_t>(dir_.file("live.lcm"), "ATTITUDE"),
                  states_attitude, live_at_least);
   // The daemon's replay at 4x publishes at 100 Hz too: about a quarter as many messages.
   const std::size_t replay_at_least = live_at_least / 4;
-  expectAllEqual("daemon replay HEADING", test::readEstimates<headingd::heading_t>(dir.file("replay.lcm"), "HEADING"),
+  expectAllEqual("daemon replay HEADING", test::readEstimates<headingd::heading_t>(dir_.file("replay.lcm"), "HEADING"),
                  states_heading, replay_at_least);
   expectAllEqual("daemon replay ATTITUDE",
-                 test::readEstimates<headingd::attitude_t>(dir.file("replay.lcm"), "ATTITUDE"), states_attitude,
+                 test::readEstimates<headingd::attitude_t>(dir_.file("replay.lcm"), "ATTITUDE"), states_attitude,
                  replay_at_least);
 }
 

@@ -129,6 +129,9 @@ class ChildProcess {
 // The demo capture (config/demo/README.md): the CAN IMU frames as a candump log, the GPS as NMEA.
 inline constexpr const char* kDemoCan = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk-can.log.gz";
 inline constexpr const char* kDemoNmea = HEADINGD_CONFIG_DIR "/demo/sim-urban-walk.nmea";
+// BROAD trial 05 as an IMU CSV (config/demo/README.md), the daemon tests' usual [imu_csv].
+inline constexpr const char* kDemoImuCsv =
+    HEADINGD_CONFIG_DIR "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz";
 #endif
 
 inline std::string lcmUrl(int offset) {

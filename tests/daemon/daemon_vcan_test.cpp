@@ -22,39 +22,34 @@ namespace headingd::daemon {
 namespace {
 
 using namespace std::chrono_literals;
-using test::ChildProcess;
-using test::LcmCollector;
+using namespace test;
 
 using core::kDegPerRad;
 constexpr int kRows = 2857;  // the first 10 s of BROAD trial 05
 
-using test::counter;
+using DaemonVcan = OnVcan;
 
-TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
-  // Needs a vcan interface: CTest runs this binary inside tools/scripts/vm-run.sh (this
-  // host's kernel has no CAN); run by hand without it, it says so instead of failing.
-  if (if_nametoindex("vcan0") == 0) GTEST_SKIP() << "no vcan0: run through tools/scripts/vm-run.sh";
-  test::TempDir dir;
+TEST_F(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
   // 10 s of the recording, as CSV and as a candump log of headingd's own frame set.
   {
     const std::string cmd = std::string("zcat ") + HEADINGD_CONFIG_DIR +
                             "/demo/05_undisturbed_slow_rotation_with_breaks_B.csv.gz | head -n " +
-                            std::to_string(kRows + 1) + " > " + dir.file("imu.csv");
+                            std::to_string(kRows + 1) + " > " + dir_.file("imu.csv");
     ASSERT_EQ(std::system(cmd.c_str()), 0);
   }
   const std::string can_table = test::vcanCanTable(HEADINGD_CONFIG_DIR);
-  test::writeCandumpLog(dir, HEADINGD_CANDUMP_FROM_CSV_BIN, can_table, dir.file("imu.csv"));
+  test::writeCandumpLog(dir_, HEADINGD_CANDUMP_FROM_CSV_BIN, can_table, dir_.file("imu.csv"));
 
   const std::string url = "udpm://239.255.76.67:7667?ttl=0";  // vcan runs are alone in their namespace
   const std::string config =
-      dir.write("vcan.toml", "[daemon]\nimu_timeout_s = 0.5\n[lcm]\nurl = \"" + url + "\"\n" + can_table);
+      dir_.write("vcan.toml", "[daemon]\nimu_timeout_s = 0.5\n[lcm]\nurl = \"" + url + "\"\n" + can_table);
   LcmCollector lcm(url);
-  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir.file("out"), dir.file("err"));
+  ChildProcess daemon({HEADINGD_BIN, "--config", config}, dir_.file("out"), dir_.file("err"));
   std::this_thread::sleep_for(1500ms);  // up and bound to vcan0
-  ChildProcess player({"/usr/bin/canplayer", "-I", dir.file("imu.log"), "vcan0=vcan0"}, dir.file("player.out"),
-                      dir.file("player.err"));
-  EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir.file("player.err"));
-  const std::string log = test::finishVcanRun(dir, daemon, lcm, 2s);
+  ChildProcess player({"/usr/bin/canplayer", "-I", dir_.file("imu.log"), "vcan0=vcan0"}, dir_.file("player.out"),
+                      dir_.file("player.err"));
+  EXPECT_EQ(player.waitFor(60s), 0) << test::readFile(dir_.file("player.err"));
+  const std::string log = test::finishVcanRun(dir_, daemon, lcm, 2s);
 
   // Every epoch became one sample and one IMU message.
   const auto status = lcm.status();
@@ -76,7 +71,7 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
                                          "acc_z", "mag_x", "mag_y", "mag_z"};
   std::vector<std::string> columns = axes;
   columns.push_back("t");
-  const files::NumericCsv rows = files::readNumericCsv(dir.file("imu.csv"), columns);
+  const files::NumericCsv rows = files::readNumericCsv(dir_.file("imu.csv"), columns);
   ASSERT_EQ(rows.rows, static_cast<std::size_t>(kRows));
   constexpr double kHalfStep[3] = {0.0001 / 2, 0.0002 / 2, 0.002 / 2};  // gyro, accel, mag (headingd_imu.dbc)
   double worst_step_fraction = 0.0;
@@ -107,14 +102,14 @@ TEST(DaemonVcan, RecordingPlayedOntoVcanIsEstimatedAndPublished) {
                     m.accel_m_s2[0], m.accel_m_s2[1], m.accel_m_s2[2], m.mag_uT[0], m.mag_uT[1], m.mag_uT[2]);
       csv << line;
     }
-    dir.write("received.csv", csv.str());
+    dir_.write("received.csv", csv.str());
   }
-  ASSERT_EQ(std::system((std::string(HEADINGD_REPLAY_BIN) + " --imu-csv " + dir.file("received.csv") + " --out " +
-                         dir.file("replay.csv") + " 2>/dev/null")
+  ASSERT_EQ(std::system((std::string(HEADINGD_REPLAY_BIN) + " --imu-csv " + dir_.file("received.csv") + " --out " +
+                         dir_.file("replay.csv") + " 2>/dev/null")
                             .c_str()),
             0);
   const std::vector<double> replay_yaw_deg =
-      files::readNumericCsv(dir.file("replay.csv"), {"yaw_deg"}).column("yaw_deg");
+      files::readNumericCsv(dir_.file("replay.csv"), {"yaw_deg"}).column("yaw_deg");
   ASSERT_EQ(replay_yaw_deg.size(), static_cast<std::size_t>(kRows));
   std::map<std::int64_t, std::size_t> index_of_sample;
   for (std::size_t i = 0; i < imu.size(); ++i) index_of_sample[imu[i].message.sample_utime] = i;

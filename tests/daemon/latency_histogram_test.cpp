@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "headingd/daemon/latency_histogram.hpp"
+#include "headingd/daemon/loop/latency_histogram.hpp"
 
 namespace headingd::daemon {
 namespace {

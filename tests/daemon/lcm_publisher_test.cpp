@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include "headingd/daemon/clocks.hpp"
-#include "headingd/daemon/lcm_publisher.hpp"
+#include "headingd/daemon/outputs/lcm_publisher.hpp"
+#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/heading_t.hpp"
 
 namespace headingd::daemon {

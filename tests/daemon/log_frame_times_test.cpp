@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "headingd/daemon/log_frame_times.hpp"
+#include "headingd/daemon/sources/log_frame_times.hpp"
 
 namespace headingd::daemon {
 namespace {

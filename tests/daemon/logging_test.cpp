@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "headingd/daemon/journal_stream.hpp"
-#include "headingd/daemon/logging.hpp"
+#include "headingd/daemon/system/journal_stream.hpp"
+#include "headingd/daemon/system/logging.hpp"
 
 namespace headingd::daemon {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "headingd/daemon/nmea_log_time.hpp"
+#include "headingd/daemon/sources/nmea_log_time.hpp"
 
 namespace headingd::daemon {
 namespace {

@@ -5,10 +5,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "config_errors.hpp"
 #include "daemon_test_support.hpp"
 #include "headingd/core/angles.hpp"
-#include "headingd/daemon/config.hpp"
-#include "headingd/daemon/nmea_out_sentences.hpp"
+#include "headingd/daemon/config/config.hpp"
+#include "headingd/daemon/outputs/nmea_out_sentences.hpp"
 #include "headingd/nmea/framer.hpp"
 #include "headingd/nmea/sentences.hpp"
 
@@ -17,22 +18,11 @@ namespace {
 
 using test::TempDir;
 
-std::string errorOf(const TempDir& dir, const std::string& text) {
-  const std::string path = dir.write("nmea.toml", text);
-  try {
-    loadDaemonConfig(path);
-  } catch (const core::ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-class NmeaOutConfigTest : public ::testing::Test {
+class NmeaOutConfigTest : public test::ConfigErrors {
  protected:
-  TempDir dir;
-  std::string at(int line) const { return dir.file("nmea.toml") + ":" + std::to_string(line) + ": "; }
+  NmeaOutConfigTest() : ConfigErrors("nmea.toml") {}
   void expectError(const std::string& text, const std::string& expected) {
-    const std::string e = errorOf(dir, text);
+    const std::string e = errorOf(text);
     EXPECT_NE(e.find(expected), std::string::npos) << "got: " << e << "\nexpected: " << expected;
   }
 };

@@ -5,12 +5,14 @@
 #include <cstdlib>
 #include <optional>
 
+#include "config_errors.hpp"
 #include "daemon_test_support.hpp"
-#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/config/config.hpp"
 
 namespace headingd::daemon {
 namespace {
 
+using test::configErrorOf;
 using test::TempDir;
 
 // Sets (or, with nullopt, unsets) STATE_DIRECTORY while it lives.
@@ -35,15 +37,6 @@ class StateDirectory {
  private:
   std::optional<std::string> old_;
 };
-
-std::string errorOf(const TempDir& dir, const std::string& text) {
-  try {
-    loadDaemonConfig(dir.write("bad.toml", text));
-  } catch (const core::ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(RecorderConfig, WithoutTableOrStateDirectoryNothingIsRecordedAndTheReasonSaysWhy) {
   TempDir dir;
@@ -100,20 +93,20 @@ TEST(RecorderConfig, KeysAreReadWithTheirRanges) {
   EXPECT_EQ(c.ring_lines, 1024u);
 
   const std::string at = dir.file("bad.toml");
-  std::string e = errorOf(dir, "[recorder]\nsegment_max_bytes = 100\n");
+  std::string e = configErrorOf(dir, "[recorder]\nsegment_max_bytes = 100\n");
   EXPECT_NE(e.find(at + ":2: [recorder] segment_max_bytes: 100 is out of range"), std::string::npos) << e;
-  e = errorOf(dir, "[recorder]\nsegment_max_age_s = 0.5\n");
+  e = configErrorOf(dir, "[recorder]\nsegment_max_age_s = 0.5\n");
   EXPECT_NE(e.find(at + ":2: [recorder] segment_max_age_s: 0.5 is out of range"), std::string::npos) << e;
-  e = errorOf(dir, "[recorder]\nring_lines = 8\n");
+  e = configErrorOf(dir, "[recorder]\nring_lines = 8\n");
   EXPECT_NE(e.find(at + ":2: [recorder] ring_lines: 8 is out of range"), std::string::npos) << e;
-  e = errorOf(dir, "[recorder]\nsegment_max_bytes = 1048576\ntotal_max_bytes = 2097152\n");
+  e = configErrorOf(dir, "[recorder]\nsegment_max_bytes = 1048576\ntotal_max_bytes = 2097152\n");
   EXPECT_NE(e.find(at + ":3: [recorder] total_max_bytes (2097152) must be at least 4 x segment_max_bytes (1048576)"),
             std::string::npos)
       << e;
-  e = errorOf(dir, "[recorder]\nenabled = true\nfolder = \"x\"\n");
+  e = configErrorOf(dir, "[recorder]\nenabled = true\nfolder = \"x\"\n");
   EXPECT_NE(e.find(at + ":3: [recorder] folder: unknown key"), std::string::npos) << e;
   EXPECT_NE(e.find("segment_max_age_s"), std::string::npos) << e;
-  e = errorOf(dir, "[recorder]\nenabled = \"yes\"\n");
+  e = configErrorOf(dir, "[recorder]\nenabled = \"yes\"\n");
   EXPECT_NE(e.find(at + ":2: [recorder] enabled: expected true or false"), std::string::npos) << e;
 }
 

@@ -23,9 +23,10 @@
 #include <thread>
 
 #include "daemon_test_support.hpp"
-#include "headingd/daemon/recorder.hpp"
-#include "headingd/daemon/recorder_folder.hpp"
-#include "headingd/daemon/status_builder.hpp"
+#include "headingd/daemon/loop/status_builder.hpp"
+#include "headingd/daemon/recorder/recorder.hpp"
+#include "headingd/daemon/recorder/recorder_folder.hpp"
+#include "headingd/daemon/recorder/recorder_output.hpp"
 
 namespace headingd::daemon {
 namespace {

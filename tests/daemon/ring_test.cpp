@@ -5,7 +5,7 @@
 #include <thread>
 #include <vector>
 
-#include "headingd/daemon/sample_ring.hpp"
+#include "headingd/daemon/loop/sample_ring.hpp"
 
 namespace headingd::daemon {
 namespace {

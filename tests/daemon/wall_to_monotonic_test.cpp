@@ -2,7 +2,7 @@
 // clock is stepped between the stamping and the mapping.
 #include <gtest/gtest.h>
 
-#include "headingd/daemon/wall_to_monotonic.hpp"
+#include "headingd/daemon/sources/wall_to_monotonic.hpp"
 
 namespace headingd::daemon {
 namespace {

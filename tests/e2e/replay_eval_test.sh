@@ -2,19 +2,10 @@
 # headingd-replay then headingd-eval on one BROAD trial: one output row per input row, the
 # documented header, and an RMSE below the trial's accuracy limit.
 set -euo pipefail
-# BROAD_DIR and KIND as cmake/test_data.cmake chose them; TRIAL without .csv.gz.
-replay=$1 eval=$2 broad=$3 kind=$4 trial=$broad/$5.csv.gz
-source "$(dirname "$0")/../support/test_data.sh"
-announce_data_set "$broad" "$kind" .csv.gz trials
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/../support/broad_trial_test.sh" "$@"
 
 "$replay" --imu-csv "$trial" --out "$work/est.csv" 2>"$work/counters.json"
-header=$(head -n 1 "$work/est.csv")
-[ "$header" = "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg" ] || { echo "bad header: $header"; exit 1; }
-in_rows=$(( $(zcat -f "$trial" | wc -l) - 1 ))
-out_rows=$(( $(wc -l < "$work/est.csv") - 1 ))
-[ "$in_rows" -eq "$out_rows" ] || { echo "rows: in $in_rows, out $out_rows"; exit 1; }
+expect_replay_csv "$work/est.csv"
 grep -q '"non_finite":0' "$work/counters.json" || { echo "counters: $(cat "$work/counters.json")"; exit 1; }
 
 result=$("$eval" --estimates "$work/est.csv" --reference "$trial")

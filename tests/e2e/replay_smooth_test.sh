@@ -4,20 +4,11 @@
 # inclination smoothed well below the causal filter's (fast combined motion: 1.43 deg causal,
 # 0.81 smoothed when this was written); --nmea is refused as a bad argument.
 set -euo pipefail
-# BROAD_DIR and KIND as cmake/test_data.cmake chose them; TRIAL without .csv.gz.
-replay=$1 eval=$2 broad=$3 kind=$4 trial=$broad/$5.csv.gz
-source "$(dirname "$0")/../support/test_data.sh"
-announce_data_set "$broad" "$kind" .csv.gz trials
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/../support/broad_trial_test.sh" "$@"
 
 "$replay" --imu-csv "$trial" --out "$work/causal.csv" 2>/dev/null
 "$replay" --imu-csv "$trial" --out "$work/smooth.csv" --smooth 2>"$work/counters.json"
-header=$(head -n 1 "$work/smooth.csv")
-[ "$header" = "t,qw,qx,qy,qz,roll_deg,pitch_deg,yaw_deg,heading_sigma_deg" ] || { echo "bad header: $header"; exit 1; }
-in_rows=$(( $(zcat -f "$trial" | wc -l) - 1 ))
-out_rows=$(( $(wc -l < "$work/smooth.csv") - 1 ))
-[ "$in_rows" -eq "$out_rows" ] || { echo "rows: in $in_rows, out $out_rows"; exit 1; }
+expect_replay_csv "$work/smooth.csv"
 grep -q "\"rows\":$in_rows," "$work/counters.json" || { echo "counters: $(cat "$work/counters.json")"; exit 1; }
 
 "$replay" --imu-csv "$trial" --out "$work/smooth2.csv" --smooth 2>/dev/null

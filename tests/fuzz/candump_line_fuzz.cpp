@@ -17,7 +17,7 @@ namespace {
 // A remote frame's DLC digit ("123#R4") is not written back: the log line says "R" only.
 bool sameFrame(const can::CanFrame& a, const can::CanFrame& b) {
   if (a.id != b.id || a.extended != b.extended || a.error_frame != b.error_frame || a.remote != b.remote ||
-      (!a.remote && a.len != b.len) || a.kernel_time_ns != b.kernel_time_ns) {
+      (!a.remote && a.len != b.len) || a.t_ns != b.t_ns) {
     return false;
   }
   for (std::size_t i = 0; i < a.len && !a.remote; ++i) {
@@ -44,14 +44,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const can::CanFrame& frame = parsed->frame;
     FUZZ_CHECK(frame.len <= 8);
     FUZZ_CHECK(frame.id <= (frame.extended || frame.error_frame ? 0x1FFFFFFFu : 0x7FFu));
-    FUZZ_CHECK(frame.kernel_time_ns >= 0);
+    FUZZ_CHECK(frame.t_ns >= 0);
     const std::string formatted = can::formatCandumpLine(frame, parsed->interface);
     const auto again = can::parseCandumpLine(formatted);
     // Interface names longer than 15 characters are cut when formatted (IFNAMSIZ).
     FUZZ_CHECK(again.has_value());
     // The log keeps microseconds: the round trip drops what is below them.
     can::CanFrame expected = frame;
-    expected.kernel_time_ns -= expected.kernel_time_ns % 1000;
+    expected.t_ns -= expected.t_ns % 1000;
     FUZZ_CHECK(sameFrame(again->frame, expected));
   }
 

@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "fuzz_check.hpp"
-#include "headingd/daemon/config.hpp"
+#include "headingd/daemon/config/config.hpp"
 
 using namespace headingd;
 

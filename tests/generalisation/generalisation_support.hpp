@@ -3,7 +3,6 @@
 // study::Recordings, the estimator run and scored on them, and the BROAD set to use.
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -14,18 +13,14 @@
 #include "headingd/study/recording.hpp"
 #include "headingd/study/scoring.hpp"
 #include "test_data.hpp"
+#include "wmm_file.hpp"
 
 namespace headingd::generalisation_test {
 
 using core::kRadPerDeg;
 
 inline const core::WorldMagneticModel& wmm() {
-  static const core::WorldMagneticModel model = [] {
-    std::ifstream in(HEADINGD_TEST_COF, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return core::WorldMagneticModel(core::parseWmmCoefficients(text.str(), HEADINGD_TEST_COF));
-  }();
+  static const core::WorldMagneticModel model = test::readWmmFile(HEADINGD_TEST_COF);
   return model;
 }
 

@@ -101,7 +101,7 @@ class RecordingReaderTest : public ::testing::Test {
     while (std::getline(lines, line)) {
       out << line << '\n';
       can::CanFrame frame = can::parseCandumpLine(line)->frame;
-      frame.kernel_time_ns -= kOffsetNs;
+      frame.t_ns -= kOffsetNs;
       const can::AssembledSamples s = assembler.push(frame);
       for (int k = 0; k < s.count; ++k) {
         const core::ImuSample& sample = s.samples[static_cast<std::size_t>(k)];

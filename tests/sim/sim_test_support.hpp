@@ -1,10 +1,8 @@
 #pragma once
 // Shared by the simulator tests: the shipped WMM, runs cached per configuration (a run
 // takes up to a second), and the files rendered to strings.
-#include <fstream>
 #include <map>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -12,17 +10,12 @@
 #include "headingd/core/wmm.hpp"
 #include "headingd/sim/output.hpp"
 #include "headingd/sim/simulation.hpp"
+#include "wmm_file.hpp"
 
 namespace headingd::sim_test {
 
 inline const core::WorldMagneticModel& shippedWmm() {
-  static const core::WorldMagneticModel model = [] {
-    std::ifstream in(HEADINGD_SIM_TEST_COF, std::ios::binary);
-    if (!in) throw std::runtime_error(HEADINGD_SIM_TEST_COF ": cannot open");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return core::WorldMagneticModel(core::parseWmmCoefficients(text.str(), HEADINGD_SIM_TEST_COF));
-  }();
+  static const core::WorldMagneticModel model = test::readWmmFile(HEADINGD_SIM_TEST_COF);
   return model;
 }
 

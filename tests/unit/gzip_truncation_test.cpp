@@ -50,14 +50,7 @@ class GzipFiles : public TempCsvFiles {
   }
   // The message of what a reader throws: CsvError from the CSV readers, FileError from the
   // whole-file reads (gzip_file.hpp).
-  static std::string errorOf(auto read) {
-    try {
-      read();
-    } catch (const std::runtime_error& e) {
-      return e.what();
-    }
-    return "";
-  }
+  static std::string errorOf(auto read) { return messageOf<std::runtime_error>(read); }
 };
 
 TEST_F(GzipFiles, ACutStreamIsAnErrorNamingTheFileForEveryReader) {

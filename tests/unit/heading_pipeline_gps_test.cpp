@@ -62,8 +62,7 @@ void expectFiniteOutput(const HeadingPipeline& p) {
 
 TEST(HeadingPipelineGps, NanMagneticVariationIsLeftOutAndCounted) {
   StillPipeline still(nullptr);
-  HeadingPipeline& pipeline = still.pipeline;
-  std::int64_t& t = still.t;
+  auto& [pipeline, t] = still;
   GpsObservation g = fixAt(t);
   g.magvar_rad = kNaN;
   pipeline.processGps(g);
@@ -74,8 +73,7 @@ TEST(HeadingPipelineGps, NanMagneticVariationIsLeftOutAndCounted) {
 
 TEST(HeadingPipelineGps, VariationBeyond180DegreesIsLeftOut) {
   StillPipeline still(nullptr);
-  HeadingPipeline& pipeline = still.pipeline;
-  std::int64_t& t = still.t;
+  auto& [pipeline, t] = still;
   GpsObservation g = fixAt(t);
   g.magvar_rad = 200.0 * kRadPerDeg;
   pipeline.processGps(g);
@@ -90,8 +88,7 @@ TEST(HeadingPipelineGps, VariationBeyond180DegreesIsLeftOut) {
 TEST(HeadingPipelineGps, ImpossiblePositionIsNoFixAndDoesNotThrow) {
   const WorldMagneticModel wmm = wmm2025();
   StillPipeline still(&wmm);
-  HeadingPipeline& pipeline = still.pipeline;
-  std::int64_t& t = still.t;
+  auto& [pipeline, t] = still;
   GpsObservation g = fixAt(t);
   g.position->latitude_deg = 200.0;
   EXPECT_NO_THROW(pipeline.processGps(g));
@@ -109,8 +106,7 @@ TEST(HeadingPipelineGps, ImpossiblePositionIsNoFixAndDoesNotThrow) {
 TEST(HeadingPipelineGps, DateWhereTheModelOverflowsIsLeftOut) {
   const WorldMagneticModel wmm = wmm2025();
   StillPipeline still(&wmm);
-  HeadingPipeline& pipeline = still.pipeline;
-  std::int64_t& t = still.t;
+  auto& [pipeline, t] = still;
   GpsObservation g = fixAt(t);
   g.decimal_year = std::numeric_limits<double>::max();  // finite, but the secular change overflows
   pipeline.processGps(g);
@@ -121,8 +117,7 @@ TEST(HeadingPipelineGps, DateWhereTheModelOverflowsIsLeftOut) {
 
 TEST(HeadingPipelineGps, NegativeSpeedAndHdopAreLeftOut) {
   StillPipeline still(nullptr);
-  HeadingPipeline& pipeline = still.pipeline;
-  std::int64_t& t = still.t;
+  auto& [pipeline, t] = still;
   GpsObservation g = fixAt(t);
   g.speed_mps = -3.0;
   g.hdop = -1.0;
@@ -136,8 +131,7 @@ TEST(HeadingPipelineGps, NegativeSpeedAndHdopAreLeftOut) {
 // overflowing (the sanitizer build, tools/scripts/sanitize.sh, checks there is no overflow).
 TEST(HeadingPipelineGps, StampsAtTheEndsOfTheRangeDoNotOverflow) {
   StillPipeline still(nullptr);
-  HeadingPipeline& pipeline = still.pipeline;
-  std::int64_t& t = still.t;
+  auto& [pipeline, t] = still;
   constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
   constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
   pipeline.processGps(fixAt(kMax));

@@ -26,17 +26,6 @@ using OutputFiles = TempCsvFiles;
 
 std::string contents(const std::string& path) { return readWholeFile(path, 0); }
 
-// The message of the exception `f` throws ("" when it throws none).
-template <class F>
-std::string messageOf(F&& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST_F(InputFiles, AFifoWithoutWriterIsRefusedAtOnceNotWaitedFor) {
   const std::string fifo = (dir_ / "calibration.toml").string();
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);

@@ -42,8 +42,8 @@ ImuSample sampleAt(int i, const Vec3& mag_uT) {
 }
 
 // Runs `seconds` of readings through the stream; distorted = the magnet is on the board.
-void run(CalibratedImuStream& stream, const ImuCalibration& c, int& i, double seconds, bool distorted,
-         double rate_rad_s, Random& rng) {
+void runReadings(CalibratedImuStream& stream, const ImuCalibration& c, int& i, double seconds, bool distorted,
+                 double rate_rad_s, Random& rng) {
   for (const int end = i + static_cast<int>(seconds / kDt); i < end; ++i) {
     const Vec3 m = fieldInSensor(i * kDt, rate_rad_s);
     const Vec3 y = (distorted ? Vec3(c.mag.D * m + c.mag.offset_uT) : m) + rng.gaussian(0.5);
@@ -51,50 +51,56 @@ void run(CalibratedImuStream& stream, const ImuCalibration& c, int& i, double se
   }
 }
 
-TEST(MagCalibrationFit, AFittingCalibrationIsKeptThroughTurnsAndRest) {
+// A stream on the magnet's calibration (magnetCalibration), its readings' noise drawn from
+// `seed`; each run goes on from sample i, where the last one stopped.
+struct MagnetStream {
+  explicit MagnetStream(std::uint32_t seed) : rng(seed) {}
+  void run(double seconds, bool distorted, double rate_rad_s) {
+    runReadings(stream, c, i, seconds, distorted, rate_rad_s, rng);
+  }
+  const MagCalibrationFit& fit() const { return stream.magFit(); }
+
   const ImuCalibration c = magnetCalibration();
-  CalibratedImuStream stream(c);
-  Random rng(1);
+  CalibratedImuStream stream{c};
+  Random rng;
   int i = 0;
-  run(stream, c, i, 20.0, true, 1.0, rng);
-  EXPECT_LT(stream.magFit().calibratedFluctuation(), 0.02);
-  EXPECT_GT(stream.magFit().rawFluctuation(), 0.1);
-  run(stream, c, i, 20.0, true, 0.0, rng);
-  EXPECT_TRUE(stream.magFit().calibrationInUse());
-  EXPECT_EQ(stream.magFit().setAside(), 0u);
+};
+
+TEST(MagCalibrationFit, AFittingCalibrationIsKeptThroughTurnsAndRest) {
+  MagnetStream magnet(1);
+  magnet.run(20.0, true, 1.0);
+  EXPECT_LT(magnet.fit().calibratedFluctuation(), 0.02);
+  EXPECT_GT(magnet.fit().rawFluctuation(), 0.1);
+  magnet.run(20.0, true, 0.0);
+  EXPECT_TRUE(magnet.fit().calibrationInUse());
+  EXPECT_EQ(magnet.fit().setAside(), 0u);
 }
 
 TEST(MagCalibrationFit, IsSetAsideWhenTheMagnetIsGoneAndTakenBackWhenItReturns) {
-  const ImuCalibration c = magnetCalibration();
-  CalibratedImuStream stream(c);
-  Random rng(2);
-  int i = 0;
-  run(stream, c, i, 10.0, true, 1.0, rng);
-  run(stream, c, i, 10.0, false, 1.0, rng);  // magnet taken off while turning
-  EXPECT_FALSE(stream.magFit().calibrationInUse());
-  EXPECT_EQ(stream.magFit().setAside(), 1u);
+  MagnetStream magnet(2);
+  magnet.run(10.0, true, 1.0);
+  magnet.run(10.0, false, 1.0);  // magnet taken off while turning
+  EXPECT_FALSE(magnet.fit().calibrationInUse());
+  EXPECT_EQ(magnet.fit().setAside(), 1u);
   // While set aside the estimator gets the raw reading.
-  const ImuSample raw = sampleAt(i, fieldInSensor(i * kDt, 1.0));
-  EXPECT_EQ(stream.apply(raw).mag_uT, raw.mag_uT);
-  ++i;
-  run(stream, c, i, 10.0, true, 1.0, rng);  // and put back
-  EXPECT_TRUE(stream.magFit().calibrationInUse());
-  EXPECT_EQ(stream.magFit().takenBack(), 1u);
+  const ImuSample raw = sampleAt(magnet.i, fieldInSensor(magnet.i * kDt, 1.0));
+  EXPECT_EQ(magnet.stream.apply(raw).mag_uT, raw.mag_uT);
+  ++magnet.i;
+  magnet.run(10.0, true, 1.0);  // and put back
+  EXPECT_TRUE(magnet.fit().calibrationInUse());
+  EXPECT_EQ(magnet.fit().takenBack(), 1u);
 }
 
 TEST(MagCalibrationFit, AtRestTheStatedStrengthDecides) {
-  const ImuCalibration c = magnetCalibration();
-  CalibratedImuStream stream(c);
-  Random rng(3);
-  int i = 0;
-  run(stream, c, i, 5.0, false, 0.0, rng);  // still, no magnet: calibrated |m| is far from 52 µT
-  EXPECT_FALSE(stream.magFit().calibrationInUse());
+  MagnetStream magnet(3);
+  magnet.run(5.0, false, 0.0);  // still, no magnet: calibrated |m| is far from 52 µT
+  EXPECT_FALSE(magnet.fit().calibrationInUse());
   // Without a stated strength a still sensor gives no evidence either way.
-  ImuCalibration unstated = c;
+  ImuCalibration unstated = magnet.c;
   unstated.mag.field_norm_uT = 0.0;
   CalibratedImuStream quiet(unstated);
-  i = 0;
-  run(quiet, unstated, i, 5.0, false, 0.0, rng);
+  int i = 0;
+  runReadings(quiet, unstated, i, 5.0, false, 0.0, magnet.rng);
   EXPECT_TRUE(quiet.magFit().calibrationInUse());
 }
 
@@ -116,17 +122,15 @@ TEST(MagCalibrationFit, AFieldThatDisturbsBothAlikeChangesNothing) {
 }
 
 TEST(MagCalibrationFit, NonFiniteReadingsAndTimeGoingBackDoNotSwitch) {
-  const ImuCalibration c = magnetCalibration();
-  CalibratedImuStream stream(c);
-  Random rng(5);
-  int i = 0;
-  run(stream, c, i, 5.0, true, 1.0, rng);
+  MagnetStream magnet(5);
+  magnet.run(5.0, true, 1.0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  stream.apply(sampleAt(i, Vec3(nan, 1.0, 2.0)));
-  stream.apply(sampleAt(i - 100, c.mag.D * fieldInSensor(i * kDt, 1.0) + c.mag.offset_uT));
-  run(stream, c, i, 5.0, true, 1.0, rng);
-  EXPECT_TRUE(stream.magFit().calibrationInUse());
-  EXPECT_TRUE(std::isfinite(stream.magFit().calibratedFluctuation()));
+  magnet.stream.apply(sampleAt(magnet.i, Vec3(nan, 1.0, 2.0)));
+  magnet.stream.apply(
+      sampleAt(magnet.i - 100, magnet.c.mag.D * fieldInSensor(magnet.i * kDt, 1.0) + magnet.c.mag.offset_uT));
+  magnet.run(5.0, true, 1.0);
+  EXPECT_TRUE(magnet.fit().calibrationInUse());
+  EXPECT_TRUE(std::isfinite(magnet.fit().calibratedFluctuation()));
 }
 
 TEST(MagCalibrationFit, WithoutACalibrationSamplesPassUnchanged) {

@@ -23,12 +23,7 @@ class CsvFiles : public TempCsvFiles {
  protected:
   // The CsvError message of reading `path` as IMU CSV, or "" if it read.
   static std::string imuErrorOf(const std::string& path) {
-    try {
-      readImuCsv(path);
-    } catch (const CsvError& e) {
-      return e.what();
-    }
-    return "";
+    return messageOf<CsvError>([&] { readImuCsv(path); });
   }
 };
 

@@ -36,6 +36,14 @@ Checked check(SampleGate& gate, const ImuSample& s) {
   return c;
 }
 
+// The sample at `t_ns`, 10 ms after the last one the gate used: accepted, with that period
+// (the time base went on from the last used sample, or restarted there).
+void expectAcceptedTenMsLater(SampleGate& gate, std::int64_t t_ns) {
+  const Checked next = check(gate, sampleAt(t_ns));
+  EXPECT_EQ(next.verdict, SampleVerdict::kAccepted) << "sample at " << t_ns << " ns";
+  EXPECT_DOUBLE_EQ(next.dt_s, 0.01) << "sample at " << t_ns << " ns";
+}
+
 TEST(SampleGate, PeriodComesFromTimestamps) {
   SampleGate gate(0.1);
   const Checked first = check(gate, sampleAt(1000 * kMs));
@@ -73,9 +81,7 @@ TEST(SampleGate, DuplicateTimestampIsSkippedAndCounted) {
   EXPECT_EQ(c.dt_s, 0.0);
   EXPECT_EQ(gate.counters().duplicate_time, 1u);
   // The time base is unchanged: the next sample's period is from the last used one.
-  const Checked next = check(gate, sampleAt(20 * kMs));
-  EXPECT_EQ(next.verdict, SampleVerdict::kAccepted);
-  EXPECT_DOUBLE_EQ(next.dt_s, 0.01);
+  expectAcceptedTenMsLater(gate, 20 * kMs);
 }
 
 TEST(SampleGate, SmallBackwardsStepIsSkippedAndCounted) {
@@ -87,9 +93,7 @@ TEST(SampleGate, SmallBackwardsStepIsSkippedAndCounted) {
   EXPECT_EQ(gate.counters().backwards_time, 1u);
   EXPECT_EQ(check(gate, sampleAt(-50 * kMs)).verdict, SampleVerdict::kBackwardsTime);  // exactly the limit back
   EXPECT_EQ(gate.counters().backwards_time, 2u);
-  const Checked next = check(gate, sampleAt(60 * kMs));
-  EXPECT_EQ(next.verdict, SampleVerdict::kAccepted);
-  EXPECT_DOUBLE_EQ(next.dt_s, 0.01);  // from 50 ms, not from the skipped 45 ms
+  expectAcceptedTenMsLater(gate, 60 * kMs);  // from 50 ms, not from the skipped 45 ms
 }
 
 TEST(SampleGate, BigBackwardsStepIsAClockJumpThatRestartsTheTimeBase) {
@@ -100,9 +104,7 @@ TEST(SampleGate, BigBackwardsStepIsAClockJumpThatRestartsTheTimeBase) {
   EXPECT_EQ(c.verdict, SampleVerdict::kClockJump);
   EXPECT_EQ(c.dt_s, 0.0);
   EXPECT_EQ(gate.counters().clock_jumps, 1u);
-  const Checked next = check(gate, sampleAt(5'010 * kMs));
-  EXPECT_EQ(next.verdict, SampleVerdict::kAccepted);
-  EXPECT_DOUBLE_EQ(next.dt_s, 0.01);
+  expectAcceptedTenMsLater(gate, 5'010 * kMs);
 }
 
 TEST(SampleGate, BigForwardStepIsAGapThatRestartsTheTimeBase) {
@@ -112,9 +114,7 @@ TEST(SampleGate, BigForwardStepIsAGapThatRestartsTheTimeBase) {
   EXPECT_EQ(c.verdict, SampleVerdict::kGap);
   EXPECT_EQ(c.dt_s, 0.0);  // the gyro is not integrated across the gap
   EXPECT_EQ(gate.counters().gaps, 1u);
-  const Checked next = check(gate, sampleAt(2'010 * kMs));
-  EXPECT_EQ(next.verdict, SampleVerdict::kAccepted);
-  EXPECT_DOUBLE_EQ(next.dt_s, 0.01);
+  expectAcceptedTenMsLater(gate, 2'010 * kMs);
 }
 
 TEST(SampleGate, NonFiniteGyroOrAccelIsSkippedAndCounted) {
@@ -134,9 +134,7 @@ TEST(SampleGate, NonFiniteGyroOrAccelIsSkippedAndCounted) {
   }
   EXPECT_EQ(gate.counters().non_finite, static_cast<std::uint64_t>(n));
   // The skipped samples did not move the time base.
-  const Checked next = check(gate, sampleAt(10 * kMs));
-  EXPECT_EQ(next.verdict, SampleVerdict::kAccepted);
-  EXPECT_DOUBLE_EQ(next.dt_s, 0.01);
+  expectAcceptedTenMsLater(gate, 10 * kMs);
 }
 
 TEST(SampleGate, NonFiniteFirstSampleDoesNotStartTheTimeBase) {

@@ -5,11 +5,24 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 namespace headingd::files {
+
+// The message of the `Error` that `f` throws, "" when it throws none (any other exception goes
+// on up).
+template <class Error = std::exception, class F>
+std::string messageOf(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 class TempCsvFiles : public ::testing::Test {
  protected:

@@ -20,7 +20,8 @@ fi
 if [[ $# -gt 0 ]]; then
   files=("$@")
 else
-  mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h')
+  # Tracked files that are still there (a file deleted but not yet committed is skipped).
+  mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h' | while read -r f; do [[ -f $f ]] && echo "$f"; done)
 fi
 
 if [[ $check -eq 0 ]]; then

@@ -126,7 +126,7 @@ bool parseFrame(std::string_view f, CanFrame& frame, std::string* reason) {
 std::optional<LoggedFrame> parseCandumpLine(std::string_view line, std::string* reason) {
   LoggedFrame out;
   std::string_view rest = line;
-  if (!parseTime(nextField(rest), out.frame.kernel_time_ns, reason)) return std::nullopt;
+  if (!parseTime(nextField(rest), out.frame.t_ns, reason)) return std::nullopt;
   out.interface = nextField(rest);
   // Linux interface names are printable: a control byte there (a NUL, say) is corruption,
   // and would cut the name short when the line is written again.
@@ -147,8 +147,8 @@ std::optional<LoggedFrame> parseCandumpLine(std::string_view line, std::string* 
 }
 
 std::size_t formatCandumpLine(const CanFrame& f, std::string_view interface, char (&out)[kCandumpLineMaxBytes]) {
-  const std::int64_t seconds = f.kernel_time_ns / 1'000'000'000;
-  const std::int64_t micros = (f.kernel_time_ns % 1'000'000'000) / 1000;
+  const std::int64_t seconds = f.t_ns / 1'000'000'000;
+  const std::int64_t micros = (f.t_ns % 1'000'000'000) / 1000;
   const std::string_view iface = interface.substr(0, 15);
   int n = std::snprintf(out, sizeof out, "(%lld.%06lld) %.*s", static_cast<long long>(seconds),
                         static_cast<long long>(micros), static_cast<int>(iface.size()), iface.data());

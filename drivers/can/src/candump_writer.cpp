@@ -32,7 +32,7 @@ CandumpWriteStats writeCandumpLog(const std::vector<core::ImuSample>& samples, c
     std::int64_t t = options.start_time_ns + s.t_ns;
     for (const CanFrame* f : ordered) {
       CanFrame stamped = *f;
-      stamped.kernel_time_ns = t;
+      stamped.t_ns = t;
       out << formatCandumpLine(stamped, options.interface) << '\n';
       t += options.frame_spacing_ns;
       ++stats.frames;

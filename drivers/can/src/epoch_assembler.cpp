@@ -131,7 +131,7 @@ AssembledSamples EpochAssembler::push(const CanFrame& frame) {
     case DecodeStatus::error_frame: ++counters_.error_frames; return out;
   }
   ++counters_.decoded_frames;
-  const std::int64_t t = frame.kernel_time_ns;
+  const std::int64_t t = frame.t_ns;
   const bool counted = d.has_sequence && pending_.has_sequence;
 
   if (sameEpoch(pending_, d, t)) {

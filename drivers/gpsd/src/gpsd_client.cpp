@@ -1,7 +1,5 @@
 #include "headingd/gpsd/gpsd_client.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <utility>
 #include <variant>
@@ -11,18 +9,11 @@
 #include <boost/asio/error.hpp>
 #include <boost/asio/write.hpp>
 
+#include "headingd/live/link_error.hpp"
+#include "headingd/live/monotonic_clock.hpp"
+
 namespace headingd::gpsd {
 namespace {
-
-std::int64_t monotonicNowNs() {
-  timespec ts{};
-  ::clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-std::chrono::nanoseconds toNs(double seconds) {
-  return std::chrono::nanoseconds(static_cast<std::int64_t>(seconds * 1e9));
-}
 
 // A line in a log message: at most 120 characters of it.
 std::string excerpt(std::string_view line) {
@@ -51,55 +42,26 @@ GpsdClient::GpsdClient(boost::asio::io_context& io, GpsdConfig config, EpochHand
       framer_(config_.max_line_bytes),
       resolver_(io),
       socket_(io),
-      reconnect_timer_(io),
-      idle_timer_(io),
-      backoff_(config_.reopen_backoff_initial_s, config_.reopen_backoff_max_s) {}
+      epoch_idle_(
+          io, config_.epoch_idle_s, [this] { return merger_.epochPending(); }, [this] { merger_.completeEpoch(); }),
+      reconnect_(io, {config_.reopen_backoff_initial_s, config_.reopen_backoff_max_s}, [this] { connect(); }) {}
 
-GpsdClient::~GpsdClient() {
-  alive_.reset();
-  closeSocket();
-}
+GpsdClient::~GpsdClient() { closeSocket(); }
 
-void GpsdClient::start() {
-  if (running_) return;
-  running_ = true;
-  backoff_.reset();
-  scheduleConnect(std::chrono::nanoseconds(0));
-}
+void GpsdClient::start() { reconnect_.start(); }
 
 void GpsdClient::stop() {
-  if (!running_) return;
-  running_ = false;
-  reconnect_timer_.cancel();
+  if (!reconnect_.stop()) return;
   resolver_.cancel();
   closeSocket();
   endStream();
   counters_.state = GpsdState::kStopped;
 }
 
-GpsdCounters GpsdClient::counters() const {
-  GpsdCounters c = counters_;
-  c.lines = framer_.counters();
-  c.epochs = merger_.epochs();
-  c.late_reports = merger_.lateReports();
-  return c;
-}
-
 std::string GpsdClient::where() const { return "gpsd at " + config_.host + ":" + std::to_string(config_.port); }
 
 void GpsdClient::setError(GpsdState state, const std::string& message) {
-  // Logged when it changes, so a gpsd that stays away is reported once, not per retry.
-  if (message != counters_.last_error || state != counters_.state) spdlog::warn("gps: {}", message);
-  counters_.state = state;
-  counters_.last_error = message;
-}
-
-void GpsdClient::scheduleConnect(std::chrono::nanoseconds delay) {
-  reconnect_timer_.expires_after(delay);
-  reconnect_timer_.async_wait([this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec) {
-    if (alive.expired() || ec || !running_) return;
-    connect();
-  });
+  live::setLinkError(counters_.state, counters_.last_error, state, message, "gps");
 }
 
 void GpsdClient::connect() {
@@ -107,9 +69,9 @@ void GpsdClient::connect() {
   if (counters_.state != GpsdState::kWaiting) counters_.state = GpsdState::kConnecting;
   resolver_.async_resolve(
       config_.host, std::to_string(config_.port),
-      [this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec,
-                                                 const boost::asio::ip::tcp::resolver::results_type& results) {
-        if (alive.expired() || !running_) return;
+      [this, alive = reconnect_.guard()](const boost::system::error_code& ec,
+                                         const boost::asio::ip::tcp::resolver::results_type& results) {
+        if (alive.expired() || !reconnect_.running()) return;
         if (ec) {
           failConnect("cannot resolve " + config_.host + ": " + ec.message());
           return;
@@ -117,7 +79,7 @@ void GpsdClient::connect() {
         boost::asio::async_connect(
             socket_, results,
             [this, alive](const boost::system::error_code& cec, const boost::asio::ip::tcp::endpoint&) {
-              if (alive.expired() || !running_) return;
+              if (alive.expired() || !reconnect_.running()) return;
               if (cec) {
                 closeSocket();
                 failConnect(where() + ": " + cec.message());
@@ -131,31 +93,30 @@ void GpsdClient::connect() {
 void GpsdClient::failConnect(const std::string& why) {
   ++counters_.connect_failures;
   setError(GpsdState::kWaiting, why + "; retrying");
-  scheduleConnect(backoff_.afterFailure());
+  reconnect_.retryAfterFailure();
 }
 
 void GpsdClient::onConnected() {
   ++counters_.connects;
   counters_.state = GpsdState::kConnected;
-  backoff_.reset();
+  reconnect_.succeeded();
   spdlog::info("gps: connected to {}, watching", where());
-  boost::asio::async_write(
-      socket_, boost::asio::buffer(kWatchCommand.data(), kWatchCommand.size()),
-      [this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec, std::size_t) {
-        if (alive.expired() || ec == boost::asio::error::operation_aborted) return;
-        if (ec && socket_.is_open()) lose("sending WATCH failed: " + ec.message());
-      });
+  boost::asio::async_write(socket_, boost::asio::buffer(kWatchCommand.data(), kWatchCommand.size()),
+                           [this, alive = reconnect_.guard()](const boost::system::error_code& ec, std::size_t) {
+                             if (alive.expired() || ec == boost::asio::error::operation_aborted) return;
+                             if (ec && socket_.is_open()) lose("sending WATCH failed: " + ec.message());
+                           });
   startRead();
 }
 
 void GpsdClient::startRead() {
-  socket_.async_read_some(boost::asio::buffer(buffer_), [this, alive = std::weak_ptr<int>(alive_)](
+  socket_.async_read_some(boost::asio::buffer(buffer_), [this, alive = reconnect_.guard()](
                                                             const boost::system::error_code& ec, std::size_t n) {
     if (alive.expired() || ec == boost::asio::error::operation_aborted || !socket_.is_open()) return;
     if (n > 0) {
-      last_receive_ns_ = monotonicNowNs();
+      const std::int64_t receive_ns = live::monotonicNowNs();
       framer_.feed(std::span<const std::uint8_t>(buffer_.data(), n),
-                   [&](std::string_view line) { onLine(line, last_receive_ns_); });
+                   [&](std::string_view line) { onLine(line, receive_ns); });
       const auto oversized = framer_.counters().oversized;
       if (oversized != counters_.lines.oversized) {
         counters_.lines.oversized = oversized;
@@ -163,7 +124,7 @@ void GpsdClient::startRead() {
           on_problem_("oversized", "a line longer than " + std::to_string(config_.max_line_bytes) + " bytes, skipped");
         }
       }
-      armIdleTimer();
+      epoch_idle_.fed(receive_ns);
     }
     if (ec) {
       lose(ec == boost::asio::error::eof ? "gpsd closed the connection" : "read failed: " + ec.message());
@@ -194,40 +155,12 @@ void GpsdClient::onLine(std::string_view line, std::int64_t receive_ns) {
   }
 }
 
-void GpsdClient::armIdleTimer() {
-  if (config_.epoch_idle_s <= 0.0 || idle_timer_armed_ || !merger_.epochPending()) return;
-  idle_timer_armed_ = true;
-  idle_timer_.expires_after(toNs(config_.epoch_idle_s));
-  idle_timer_.async_wait([this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec) {
-    if (alive.expired()) return;
-    idle_timer_armed_ = false;
-    if (!ec) onIdleTimer();
-  });
-}
-
-void GpsdClient::onIdleTimer() {
-  // One timer per quiet period: reports since it was armed push the deadline.
-  const auto quiet_for = std::chrono::nanoseconds(monotonicNowNs() - last_receive_ns_);
-  const auto idle = toNs(config_.epoch_idle_s);
-  if (quiet_for >= idle) {
-    merger_.completeEpoch();
-    return;
-  }
-  idle_timer_armed_ = true;
-  idle_timer_.expires_after(idle - quiet_for);
-  idle_timer_.async_wait([this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec) {
-    if (alive.expired()) return;
-    idle_timer_armed_ = false;
-    if (!ec) onIdleTimer();
-  });
-}
-
 void GpsdClient::lose(const std::string& why) {
   ++counters_.disconnects;
   closeSocket();
   endStream();
   setError(GpsdState::kWaiting, where() + ": " + why + "; reconnecting");
-  scheduleConnect(backoff_.reset());
+  reconnect_.retryAfterLoss();
 }
 
 void GpsdClient::endStream() {
@@ -236,10 +169,18 @@ void GpsdClient::endStream() {
 }
 
 void GpsdClient::closeSocket() {
-  idle_timer_.cancel();
+  epoch_idle_.cancel();
   boost::system::error_code ignored;
   socket_.shutdown(boost::asio::ip::tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);
+}
+
+GpsdCounters GpsdClient::counters() const {
+  GpsdCounters c = counters_;
+  c.lines = framer_.counters();
+  c.epochs = merger_.epochs();
+  c.late_reports = merger_.lateReports();
+  return c;
 }
 
 }  // namespace headingd::gpsd

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
-#include <sstream>
 
 #include "headingd/core/toml_table_reader.hpp"
+#include "headingd/nmea/gps_table_keys.hpp"
 
 namespace headingd::gpsd {
 
@@ -25,16 +25,8 @@ GpsdConfig parseGpsdTable(const toml::table* gps, const std::string& source) {
     r.fail("host", "expected an IP address or host name such as \"127.0.0.1\", got \"" + c.host + "\"");
   }
   c.port = static_cast<unsigned>(r.integer("port", c.port, 1, 65535));
-  c.reopen_backoff_initial_s = r.number("reopen_backoff_initial_s", c.reopen_backoff_initial_s, 0.01, 60.0, "s");
-  c.reopen_backoff_max_s = r.number("reopen_backoff_max_s", c.reopen_backoff_max_s, 0.01, 600.0, "s");
-  c.epoch_idle_s = r.number("epoch_idle_s", c.epoch_idle_s, 0.0, 10.0, "s");
-  r.rejectUnknownKeys("config/gps.toml documents them; device and baud are for source = \"serial\"");
-  if (c.reopen_backoff_max_s < c.reopen_backoff_initial_s) {
-    std::ostringstream o;
-    o << c.reopen_backoff_max_s << " is below reopen_backoff_initial_s (" << c.reopen_backoff_initial_s
-      << "), expected max >= initial";
-    r.fail("reopen_backoff_max_s", o.str());
-  }
+  nmea::readSharedGpsKeys(r, c.reopen_backoff_initial_s, c.reopen_backoff_max_s, c.epoch_idle_s,
+                          "config/gps.toml documents them; device and baud are for source = \"serial\"");
   return c;
 }
 

@@ -71,7 +71,7 @@ void RecordingReader::onCanLine(std::string_view line) {
   const auto logged = can::parseCandumpLine(line, &reason);
   if (!logged) return badLine(can_lines_, reason);
   can::CanFrame frame = logged->frame;
-  frame.kernel_time_ns -= setup_.can_time_offset_ns;
+  frame.t_ns -= setup_.can_time_offset_ns;
   ++counters_.can_frames;
   const can::AssembledSamples s = can_assembler_->push(frame);
   for (int i = 0; i < s.count; ++i) imu_queue_.push_back(s.samples[static_cast<std::size_t>(i)]);

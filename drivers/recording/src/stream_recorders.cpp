@@ -10,7 +10,7 @@ CanStreamRecorder::CanStreamRecorder(LineSink& sink, std::string interface, std:
 
 void CanStreamRecorder::frame(const can::CanFrame& frame) {
   can::CanFrame stamped = frame;
-  stamped.kernel_time_ns += offset_ns_;
+  stamped.t_ns += offset_ns_;
   char line[can::kCandumpLineMaxBytes];
   sink_.write(std::string_view(line, can::formatCandumpLine(stamped, interface_, line)));
 }

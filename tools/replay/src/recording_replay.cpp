@@ -12,7 +12,7 @@
 #include "headingd/core/imu_calibration_toml.hpp"
 #include "headingd/core/toml_document.hpp"
 #include "headingd/core/wmm_coefficients.hpp"
-#include "headingd/daemon/lcm_messages.hpp"
+#include "headingd/daemon/outputs/lcm_messages.hpp"
 #include "headingd/files/gzip_file.hpp"
 #include "headingd/lcm_export/lcm_log_writer.hpp"
 #include "headingd/recording/recording_format.hpp"

@@ -7,20 +7,22 @@
 #include <vector>
 
 #include "headingd/core/wmm.hpp"
-#include "headingd/daemon/config.hpp"
-#include "headingd/daemon/doorbell.hpp"
-#include "headingd/daemon/estimator_loop.hpp"
-#include "headingd/daemon/lcm_publisher.hpp"
-#include "headingd/daemon/nmea_out_server.hpp"
-#include "headingd/daemon/playback_clock.hpp"
-#include "headingd/daemon/realtime.hpp"
-#include "headingd/daemon/recorder.hpp"
-#include "headingd/daemon/recording_files.hpp"
-#include "headingd/daemon/ring_entries.hpp"
-#include "headingd/daemon/sample_ring.hpp"
-#include "headingd/daemon/source.hpp"
-#include "headingd/daemon/source_registry.hpp"
-#include "headingd/daemon/systemd_notify.hpp"
+#include "headingd/daemon/config/config.hpp"
+#include "headingd/daemon/loop/doorbell.hpp"
+#include "headingd/daemon/loop/estimator_loop.hpp"
+#include "headingd/daemon/loop/ring_entries.hpp"
+#include "headingd/daemon/loop/sample_ring.hpp"
+#include "headingd/daemon/outputs/lcm_publisher.hpp"
+#include "headingd/daemon/outputs/nmea_out_server.hpp"
+#include "headingd/daemon/outputs/nmea_output.hpp"
+#include "headingd/daemon/recorder/recorder.hpp"
+#include "headingd/daemon/recorder/recorder_output.hpp"
+#include "headingd/daemon/recorder/recording_files.hpp"
+#include "headingd/daemon/sources/playback_clock.hpp"
+#include "headingd/daemon/sources/source.hpp"
+#include "headingd/daemon/sources/source_registry.hpp"
+#include "headingd/daemon/system/realtime.hpp"
+#include "headingd/daemon/system/systemd_notify.hpp"
 
 namespace headingd::daemon {
 
@@ -62,16 +64,17 @@ class Daemon {
   std::vector<std::unique_ptr<recording::LineSink>> recorder_sinks_;  // can, gps, estimator
   RecorderSinks source_sinks_;
   RecordingStart recording_start_;
-  std::vector<std::unique_ptr<SampleRing<ImuRingEntry>>> imu_rings_;
-  std::vector<std::unique_ptr<SampleRing<GpsRingEntry>>> gps_rings_;
+  SourceRings rings_;
   PlaybackClock playback_clock_;  // shared by the log sources; before them, so it outlives them
   std::vector<std::unique_ptr<Source>> sources_;
   SystemdNotifier notifier_;
-  std::unique_ptr<RealtimeSettings> realtime_;
-  Doorbell doorbell_;  // [daemon] publish = "imu": the IMU rings wake the estimator  // [realtime], for the process and
-                       // each thread
+  std::unique_ptr<RealtimeSettings> realtime_;  // [realtime], for the process and each thread
+  Doorbell doorbell_;                           // [daemon] publish = "imu": the IMU rings wake the estimator
   std::unique_ptr<LcmPublisher> publisher_;
   std::unique_ptr<NmeaOutServer> nmea_out_;  // [nmea_out] (null: off); stopped after the loop
+  // The loop's outputs besides LCM (null: off); before the loop, so that they outlive it.
+  std::unique_ptr<RecorderOutput> recorder_output_;
+  std::unique_ptr<NmeaOutput> nmea_output_;
   std::unique_ptr<EstimatorLoop> loop_;
   std::thread loop_thread_;
   bool sources_started_ = false;

@@ -12,7 +12,7 @@
 #include <cstring>
 #include <ctime>
 
-#include <boost/asio/post.hpp>
+#include "headingd/live/monotonic_clock.hpp"
 
 namespace headingd::can {
 namespace {
@@ -34,30 +34,24 @@ ReceiverSettings receiverSettingsFrom(const CanConfig& config, const ImuFrameCod
   ReceiverSettings s;
   s.interface = config.interface;
   s.filters = codec.kernelFilters();
-  s.reconnect_initial = std::chrono::nanoseconds(static_cast<std::int64_t>(config.reconnect_initial_s * 1e9));
-  s.reconnect_max = std::chrono::nanoseconds(static_cast<std::int64_t>(config.reconnect_max_s * 1e9));
+  s.reconnect_initial = live::secondsToNs(config.reconnect_initial_s);
+  s.reconnect_max = live::secondsToNs(config.reconnect_max_s);
   s.receive_buffer_bytes = config.receive_buffer_bytes;
   return s;
 }
 
 SocketCanReceiver::SocketCanReceiver(boost::asio::io_context& io, ReceiverSettings settings, FrameHandler on_frame)
-    : io_(io),
-      settings_(std::move(settings)),
+    : settings_(std::move(settings)),
       on_frame_(std::move(on_frame)),
       socket_(io),
-      retry_timer_(io),
-      retry_delay_(settings_.reconnect_initial) {}
+      reopen_(io, live::ReconnectDelay(settings_.reconnect_initial, settings_.reconnect_max), [this] { tryOpen(); }) {}
 
 SocketCanReceiver::~SocketCanReceiver() { stop(); }
 
-void SocketCanReceiver::start() {
-  stopped_ = false;
-  boost::asio::post(io_, [this] { tryOpen(); });
-}
+void SocketCanReceiver::start() { reopen_.start(); }
 
 void SocketCanReceiver::stop() {
-  stopped_ = true;
-  retry_timer_.cancel();
+  reopen_.stop();
   boost::system::error_code ignored;
   socket_.close(ignored);
 }
@@ -90,21 +84,14 @@ void SocketCanReceiver::lose(LinkState next, int err, const std::string& what) {
 }
 
 void SocketCanReceiver::scheduleRetry() {
-  if (stopped_) return;
-  const auto delay = retry_delay_;
-  retry_delay_ = std::min(retry_delay_ * 2, settings_.reconnect_max);  // bounded exponential back-off
-  {
-    std::lock_guard lock(mutex_);
-    rare_.next_retry_delay_ns = delay.count();
-  }
-  retry_timer_.expires_after(delay);
-  retry_timer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec && !stopped_) tryOpen();
-  });
+  if (!reopen_.running()) return;
+  const auto delay = reopen_.retryAfterFailure();  // bounded exponential back-off
+  std::lock_guard lock(mutex_);
+  rare_.next_retry_delay_ns = delay.count();
 }
 
 void SocketCanReceiver::tryOpen() {
-  if (stopped_) return;
+  if (!reopen_.running()) return;
   {
     std::lock_guard lock(mutex_);
     ++rare_.open_attempts;
@@ -189,7 +176,7 @@ void SocketCanReceiver::tryOpen() {
     fail(LinkState::waiting, ec.value(), "asio assign failed: " + ec.message(), fd);
     return;
   }
-  retry_delay_ = settings_.reconnect_initial;
+  reopen_.succeeded();
   {
     std::lock_guard lock(mutex_);
     ++rare_.times_up;
@@ -208,7 +195,7 @@ void SocketCanReceiver::waitReadable() {
 }
 
 void SocketCanReceiver::onReadable(const boost::system::error_code& ec) {
-  if (stopped_ || ec == boost::asio::error::operation_aborted) return;
+  if (!reopen_.running() || ec == boost::asio::error::operation_aborted) return;
   if (ec) {
     {
       std::lock_guard lock(mutex_);
@@ -247,12 +234,13 @@ void SocketCanReceiver::onReadable(const boost::system::error_code& ec) {
       continue;
     }
     CanFrame f;
+    std::int64_t kernel_realtime_ns = 0;
     for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c)) {
       if (c->cmsg_level != SOL_SOCKET) continue;
       if (c->cmsg_type == SO_TIMESTAMPNS) {
         timespec ts{};
         std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
-        f.kernel_time_ns = static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+        kernel_realtime_ns = static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
       } else if (c->cmsg_type == SO_RXQ_OVFL) {
         std::uint32_t dropped = 0;  // the socket's running total
         std::memcpy(&dropped, CMSG_DATA(c), sizeof dropped);
@@ -272,8 +260,8 @@ void SocketCanReceiver::onReadable(const boost::system::error_code& ec) {
       countErrorFrame(f, rare_.bus);
     }
     frames_.fetch_add(1, std::memory_order_relaxed);
-    on_frame_(f);
-    if (stopped_) return;  // the callback may stop us
+    on_frame_(f, kernel_realtime_ns);
+    if (!reopen_.running()) return;  // the callback may stop us
   }
   waitReadable();
 }

@@ -1,13 +1,12 @@
 #include "headingd/nmea/nmea_log_player.hpp"
 
-#include <time.h>
-
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <variant>
 
 #include "headingd/files/input_file.hpp"
+#include "headingd/live/monotonic_clock.hpp"
 #include "headingd/nmea/checksum.hpp"
 #include "headingd/nmea/comment_filter.hpp"
 #include "headingd/nmea/sentences.hpp"
@@ -16,12 +15,6 @@ namespace headingd::nmea {
 namespace {
 
 constexpr std::int64_t kDayNs = 86'400'000'000'000;
-
-std::int64_t monotonicNowNs() {
-  timespec ts{};
-  ::clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 // The UTC time of day a line stamps its epoch with, by the FixAccumulator's rules: the
 // sentences that start an epoch (GGA, RMC, GNS, ZDA, GLL), not GST (it describes an older
@@ -162,7 +155,7 @@ void NmeaLogPlayer::scheduleNext() {
 
 void NmeaLogPlayer::playGroup() {
   const Group& g = groups_[next_group_++];
-  assembler_.feed(std::span<const std::uint8_t>(bytes_.data() + g.begin, g.end - g.begin), monotonicNowNs());
+  assembler_.feed(std::span<const std::uint8_t>(bytes_.data() + g.begin, g.end - g.begin), live::monotonicNowNs());
   assembler_.completeEpoch();
   ++counters_.groups_played;
   scheduleNext();

@@ -2,9 +2,9 @@
 #include "headingd/core/toml_document.hpp"
 
 #include <array>
-#include <sstream>
 
 #include "headingd/core/toml_table_reader.hpp"
+#include "headingd/nmea/gps_table_keys.hpp"
 
 namespace headingd::nmea {
 namespace {
@@ -51,16 +51,8 @@ SerialGpsConfig parseGpsTable(const toml::table* gps, const std::string& source)
       r.fail("baud", std::to_string(b) + " is not a standard rate, expected one of " + baudList());
     c.baud = static_cast<unsigned>(b);
   }
-  c.reopen_backoff_initial_s = r.number("reopen_backoff_initial_s", c.reopen_backoff_initial_s, 0.01, 60.0, "s");
-  c.reopen_backoff_max_s = r.number("reopen_backoff_max_s", c.reopen_backoff_max_s, 0.01, 600.0, "s");
-  c.epoch_idle_s = r.number("epoch_idle_s", c.epoch_idle_s, 0.0, 10.0, "s");
-  r.rejectUnknownKeys("config/gps.toml documents them");
-  if (c.reopen_backoff_max_s < c.reopen_backoff_initial_s) {
-    std::ostringstream o;
-    o << c.reopen_backoff_max_s << " is below reopen_backoff_initial_s (" << c.reopen_backoff_initial_s
-      << "), expected max >= initial";
-    r.fail("reopen_backoff_max_s", o.str());
-  }
+  readSharedGpsKeys(r, c.reopen_backoff_initial_s, c.reopen_backoff_max_s, c.epoch_idle_s,
+                    "config/gps.toml documents them");
   return c;
 }
 

@@ -1,7 +1,6 @@
 #include "headingd/nmea/serial_gps_reader.hpp"
 
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,22 +10,11 @@
 #include <spdlog/spdlog.h>
 #include <boost/asio/error.hpp>
 
+#include "headingd/live/link_error.hpp"
+#include "headingd/live/monotonic_clock.hpp"
 #include "headingd/nmea/serial_port_open.hpp"
 
 namespace headingd::nmea {
-namespace {
-
-std::int64_t monotonicNowNs() {
-  timespec ts{};
-  ::clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-std::chrono::nanoseconds toNs(double seconds) {
-  return std::chrono::nanoseconds(static_cast<std::int64_t>(seconds * 1e9));
-}
-
-}  // namespace
 
 const char* serialGpsStateName(SerialGpsState s) {
   switch (s) {
@@ -44,54 +32,24 @@ SerialGpsReader::SerialGpsReader(boost::asio::io_context& io, SerialGpsConfig co
     : config_(std::move(config)),
       assembler_(config_.parser, std::move(on_fix), std::move(on_line)),
       port_(io),
-      reopen_timer_(io),
-      idle_timer_(io),
       path_timer_(io),
-      backoff_(config_.reopen_backoff_initial_s, config_.reopen_backoff_max_s) {}
+      epoch_idle_(
+          io, config_.epoch_idle_s, [this] { return assembler_.epochPending(); }, [this] { endQuietEpoch(); }),
+      reopen_(io, {config_.reopen_backoff_initial_s, config_.reopen_backoff_max_s}, [this] { attemptOpen(); }) {}
 
-SerialGpsReader::~SerialGpsReader() {
-  alive_.reset();
-  closePort();
-}
+SerialGpsReader::~SerialGpsReader() { closePort(); }
 
-void SerialGpsReader::start() {
-  if (running_) return;
-  running_ = true;
-  backoff_.reset();
-  scheduleOpen(std::chrono::nanoseconds(0));
-}
+void SerialGpsReader::start() { reopen_.start(); }
 
 void SerialGpsReader::stop() {
-  if (!running_) return;
-  running_ = false;
-  reopen_timer_.cancel();
+  if (!reopen_.stop()) return;
   closePort();
   endStream();
   counters_.state = SerialGpsState::kStopped;
 }
 
-SerialGpsCounters SerialGpsReader::counters() const {
-  SerialGpsCounters c = counters_;
-  c.parser = assembler_.parserCounters();
-  c.epochs = assembler_.epochCounters();
-  return c;
-}
-
-void SerialGpsReader::scheduleOpen(std::chrono::nanoseconds delay) {
-  reopen_timer_.expires_after(delay);
-  reopen_timer_.async_wait([this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec) {
-    if (alive.expired() || ec || !running_) return;
-    attemptOpen();
-  });
-}
-
 void SerialGpsReader::setError(SerialGpsState state, const std::string& message) {
-  // Logged when it changes, so a device that stays away is reported once, not per retry.
-  if (message != counters_.last_error || state != counters_.state) {
-    spdlog::warn("gps: {}", message);
-  }
-  counters_.state = state;
-  counters_.last_error = message;
+  live::setLinkError(counters_.state, counters_.last_error, state, message, "gps");
 }
 
 void SerialGpsReader::attemptOpen() {
@@ -105,7 +63,7 @@ void SerialGpsReader::attemptOpen() {
     } else {
       setError(failed->device_missing ? SerialGpsState::kWaitingForDevice : SerialGpsState::kError, failed->message);
     }
-    scheduleOpen(backoff_.afterFailure());
+    reopen_.retryAfterFailure();
     return;
   }
   const int fd = std::get<OpenedSerialDevice>(result).fd;
@@ -117,13 +75,13 @@ void SerialGpsReader::attemptOpen() {
     releaseSerialDevice(fd);
     ::close(fd);
     setError(SerialGpsState::kError, config_.device + ": " + ec.message());
-    scheduleOpen(backoff_.afterFailure());
+    reopen_.retryAfterFailure();
     return;
   }
   if (ever_opened_) ++counters_.reopens;
   ever_opened_ = true;
   counters_.state = SerialGpsState::kOpen;
-  backoff_.reset();
+  reopen_.succeeded();
   spdlog::info("gps: {} open at {} baud", config_.device, config_.baud);
   startRead();
   startPathCheck();
@@ -131,7 +89,7 @@ void SerialGpsReader::attemptOpen() {
 
 void SerialGpsReader::startRead() {
   port_.async_read_some(boost::asio::buffer(buffer_),
-                        [this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec, std::size_t n) {
+                        [this, alive = reopen_.guard()](const boost::system::error_code& ec, std::size_t n) {
                           if (alive.expired() || ec == boost::asio::error::operation_aborted) return;
                           onRead(ec, n);
                         });
@@ -140,12 +98,12 @@ void SerialGpsReader::startRead() {
 void SerialGpsReader::onRead(const boost::system::error_code& ec, std::size_t n) {
   if (!port_.is_open()) return;  // closed after this read completed
   if (n > 0) {
-    last_receive_ns_ = monotonicNowNs();
+    const std::int64_t receive_ns = live::monotonicNowNs();
     ++counters_.reads;
     const std::span<const std::uint8_t> bytes(buffer_.data(), n);
-    if (tap_ != nullptr) tap_->fed(bytes, last_receive_ns_);
-    assembler_.feed(bytes, last_receive_ns_);
-    armIdleTimer();
+    if (tap_ != nullptr) tap_->fed(bytes, receive_ns);
+    assembler_.feed(bytes, receive_ns);
+    epoch_idle_.fed(receive_ns);
   }
   if (ec) {
     // EOF: the other end hung up (a pty master closed). EIO: the USB device is gone.
@@ -156,40 +114,15 @@ void SerialGpsReader::onRead(const boost::system::error_code& ec, std::size_t n)
   startRead();
 }
 
-void SerialGpsReader::armIdleTimer() {
-  if (config_.epoch_idle_s <= 0.0 || idle_timer_armed_ || !assembler_.epochPending()) return;
-  idle_timer_armed_ = true;
-  idle_timer_.expires_after(toNs(config_.epoch_idle_s));
-  idle_timer_.async_wait([this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec) {
-    if (alive.expired()) return;
-    idle_timer_armed_ = false;
-    if (!ec) onIdleTimer();
-  });
-}
-
-void SerialGpsReader::onIdleTimer() {
-  // One timer per quiet period: bytes since it was armed push the deadline instead of
-  // re-arming it on every read.
-  const auto quiet_for = std::chrono::nanoseconds(monotonicNowNs() - last_receive_ns_);
-  const auto idle = toNs(config_.epoch_idle_s);
-  if (quiet_for >= idle) {
-    if (tap_ != nullptr && assembler_.epochPending()) tap_->epochCompleted(monotonicNowNs());
-    assembler_.completeEpoch();
-    return;
-  }
-  idle_timer_armed_ = true;
-  idle_timer_.expires_after(idle - quiet_for);
-  idle_timer_.async_wait([this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec) {
-    if (alive.expired()) return;
-    idle_timer_armed_ = false;
-    if (!ec) onIdleTimer();
-  });
+void SerialGpsReader::endQuietEpoch() {
+  if (tap_ != nullptr && assembler_.epochPending()) tap_->epochCompleted(live::monotonicNowNs());
+  assembler_.completeEpoch();
 }
 
 void SerialGpsReader::startPathCheck() {
   if (config_.path_check_s <= 0.0) return;
-  path_timer_.expires_after(toNs(config_.path_check_s));
-  path_timer_.async_wait([this, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec) {
+  path_timer_.expires_after(live::secondsToNs(config_.path_check_s));
+  path_timer_.async_wait([this, alive = reopen_.guard()](const boost::system::error_code& ec) {
     if (alive.expired() || ec || !port_.is_open()) return;
     onPathCheck();
   });
@@ -215,20 +148,27 @@ void SerialGpsReader::lose(const std::string& why) {
   closePort();
   endStream();
   setError(SerialGpsState::kWaitingForDevice, config_.device + ": " + why + "; reopening");
-  scheduleOpen(backoff_.reset());
+  reopen_.retryAfterLoss();
 }
 
 void SerialGpsReader::endStream() {
-  if (tap_ != nullptr) tap_->streamEnded(monotonicNowNs());
+  if (tap_ != nullptr) tap_->streamEnded(live::monotonicNowNs());
   assembler_.endOfStream();
 }
 
 void SerialGpsReader::closePort() {
-  idle_timer_.cancel();
+  epoch_idle_.cancel();
   path_timer_.cancel();
   boost::system::error_code ignored;
   if (port_.is_open()) releaseSerialDevice(port_.native_handle());
   port_.close(ignored);
+}
+
+SerialGpsCounters SerialGpsReader::counters() const {
+  SerialGpsCounters c = counters_;
+  c.parser = assembler_.parserCounters();
+  c.epochs = assembler_.epochCounters();
+  return c;
 }
 
 }  // namespace headingd::nmea

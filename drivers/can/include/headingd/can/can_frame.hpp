@@ -17,7 +17,12 @@ struct CanFrame {
   bool error_frame = false;  // kernel error report; `id` holds the CAN_ERR_* class bits
   std::uint8_t len = 0;      // data length in bytes, 0..8 (classic CAN: DLC == length)
   std::array<std::uint8_t, 8> data{};
-  std::int64_t kernel_time_ns = 0;  // CLOCK_REALTIME from SO_TIMESTAMPNS; 0 if unknown
+  // The frame's time on its stream's time axis, the one the epoch assembler stamps the samples
+  // with: CLOCK_MONOTONIC for a live bus (the live source moves the kernel's receive timestamp
+  // there), the log's clock for a candump log, the estimator's for a recording's frames. The
+  // receiver, which knows only the kernel's wall-clock stamp, hands that over beside the frame
+  // (socketcan_receiver.hpp) and leaves this 0.
+  std::int64_t t_ns = 0;
 };
 
 }  // namespace headingd::can

@@ -17,7 +17,7 @@
 namespace headingd::can {
 
 struct LoggedFrame {
-  CanFrame frame;              // kernel_time_ns holds the logged time (CLOCK_REALTIME, microseconds resolution)
+  CanFrame frame;              // t_ns holds the logged time (the log's clock, microseconds resolution)
   std::string_view interface;  // points into the parsed line
 };
 

@@ -57,7 +57,7 @@ class EpochAssembler {
 
   AssembledSamples push(const CanFrame& frame);
   // Releases (or counts as incomplete) an open epoch whose first frame is older than the
-  // window at `now_ns` (same clock as the frames' kernel_time_ns).
+  // window at `now_ns` (same clock as the frames' t_ns).
   AssembledSamples flush(std::int64_t now_ns);
   // End of input: closes the open epoch.
   AssembledSamples finish();

@@ -16,18 +16,17 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <string>
 #include <string_view>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
-#include <boost/asio/steady_timer.hpp>
 
 #include "headingd/gpsd/gpsd_config.hpp"
 #include "headingd/gpsd/gpsd_epoch_merger.hpp"
 #include "headingd/gpsd/json_line_framer.hpp"
-#include "headingd/nmea/reconnect_delay.hpp"
+#include "headingd/live/epoch_idle_timer.hpp"
+#include "headingd/live/reconnect_schedule.hpp"
 
 namespace headingd::gpsd {
 
@@ -77,12 +76,9 @@ class GpsdClient {
 
  private:
   void connect();
-  void scheduleConnect(std::chrono::nanoseconds delay);
   void onConnected();
   void startRead();
   void onLine(std::string_view line, std::int64_t receive_ns);
-  void armIdleTimer();
-  void onIdleTimer();
   void lose(const std::string& why);
   void failConnect(const std::string& why);
   void closeSocket();
@@ -96,16 +92,12 @@ class GpsdClient {
   JsonLineFramer framer_;
   boost::asio::ip::tcp::resolver resolver_;
   boost::asio::ip::tcp::socket socket_;
-  boost::asio::steady_timer reconnect_timer_;
-  boost::asio::steady_timer idle_timer_;
   std::array<std::uint8_t, 4096> buffer_{};
-  nmea::ReconnectDelay backoff_;
-  std::int64_t last_receive_ns_ = 0;
-  bool idle_timer_armed_ = false;
-  bool running_ = false;
   GpsdCounters counters_;
-  // Handlers hold a weak_ptr to this: once the client is gone, they do nothing.
-  std::shared_ptr<int> alive_ = std::make_shared<int>(0);
+  live::EpochIdleTimer epoch_idle_;
+  // Running or not, the next connect, the back-off. Last, so that its guard, which every
+  // handler holds, expires first: once the client is gone, they do nothing.
+  live::ReconnectSchedule reconnect_;
 };
 
 }  // namespace headingd::gpsd

@@ -26,7 +26,7 @@ class CanStreamRecorder {
  public:
   // `can_time_offset_ns`: added to estimator times to give candump times (whole µs).
   CanStreamRecorder(LineSink& sink, std::string interface, std::int64_t can_time_offset_ns);
-  // `frame.kernel_time_ns` on the estimator's axis, as given to the assembler.
+  // `frame.t_ns` on the estimator's axis, as given to the assembler.
   void frame(const can::CanFrame& frame);
   void flushed(std::int64_t now_ns);
   void dropped(std::int64_t sample_t_ns);

@@ -19,11 +19,11 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/posix/stream_descriptor.hpp>
-#include <boost/asio/steady_timer.hpp>
 
 #include "headingd/can/can_frame.hpp"
 #include "headingd/can/error_frame.hpp"
 #include "headingd/can/imu_frame_codec.hpp"
+#include "headingd/live/reconnect_schedule.hpp"
 
 namespace headingd::can {
 
@@ -64,7 +64,9 @@ struct ReceiverStatus {
 
 class SocketCanReceiver {
  public:
-  using FrameHandler = std::function<void(const CanFrame&)>;
+  // A frame with the kernel's receive timestamp (SO_TIMESTAMPNS: CLOCK_REALTIME; 0 if the
+  // kernel gave none). The frame's own t_ns is 0: its stream's axis is the caller's to choose.
+  using FrameHandler = std::function<void(const CanFrame&, std::int64_t kernel_realtime_ns)>;
 
   SocketCanReceiver(boost::asio::io_context& io, ReceiverSettings settings, FrameHandler on_frame);
   ~SocketCanReceiver();
@@ -85,13 +87,10 @@ class SocketCanReceiver {
   void lose(LinkState next, int err, const std::string& what);
   void setError(LinkState next, int err, const std::string& what);
 
-  boost::asio::io_context& io_;
   ReceiverSettings settings_;
   FrameHandler on_frame_;
   boost::asio::posix::stream_descriptor socket_;
-  boost::asio::steady_timer retry_timer_;
-  std::chrono::nanoseconds retry_delay_;
-  bool stopped_ = true;
+  live::ReconnectSchedule reopen_;  // running or stopped, the next open, the back-off
 
   // Per-frame counters are atomics; rare events go through the mutex.
   std::atomic<LinkState> state_{LinkState::waiting};

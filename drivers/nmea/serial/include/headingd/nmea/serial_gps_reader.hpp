@@ -19,7 +19,6 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <string>
 
@@ -27,8 +26,9 @@
 #include <boost/asio/serial_port.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "headingd/live/epoch_idle_timer.hpp"
+#include "headingd/live/reconnect_schedule.hpp"
 #include "headingd/nmea/counters.hpp"
-#include "headingd/nmea/reconnect_delay.hpp"
 #include "headingd/nmea/serial_epoch_assembler.hpp"
 #include "headingd/nmea/serial_gps_config.hpp"
 
@@ -78,11 +78,9 @@ class SerialGpsReader {
 
  private:
   void attemptOpen();
-  void scheduleOpen(std::chrono::nanoseconds delay);
   void startRead();
   void onRead(const boost::system::error_code& ec, std::size_t n);
-  void armIdleTimer();
-  void onIdleTimer();
+  void endQuietEpoch();  // the epoch_idle_s timer ended the epoch in progress
   void startPathCheck();
   void onPathCheck();
   void lose(const std::string& why);
@@ -93,20 +91,16 @@ class SerialGpsReader {
   SerialGpsConfig config_;
   EpochAssembler assembler_;
   boost::asio::serial_port port_;
-  boost::asio::steady_timer reopen_timer_;
-  boost::asio::steady_timer idle_timer_;
   boost::asio::steady_timer path_timer_;
   std::array<std::uint8_t, 512> buffer_{};
-  ReconnectDelay backoff_;
-  std::int64_t last_receive_ns_ = 0;
-  bool idle_timer_armed_ = false;
   bool ever_opened_ = false;
-  bool running_ = false;
   std::uint64_t open_dev_ = 0;  // st_rdev of the open device, to notice a re-pointed path
   SerialGpsCounters counters_;
   AssemblerInputTap* tap_ = nullptr;
-  // Handlers hold a weak_ptr to this: once the reader is gone, they do nothing.
-  std::shared_ptr<int> alive_ = std::make_shared<int>(0);
+  live::EpochIdleTimer epoch_idle_;
+  // Running or not, the next open, the back-off. Last, so that its guard, which every
+  // handler holds, expires first: once the reader is gone, they do nothing.
+  live::ReconnectSchedule reopen_;
 };
 
 }  // namespace headingd::nmea
