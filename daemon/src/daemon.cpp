@@ -6,9 +6,9 @@
 #include "headingd/core/wmm_coefficients.hpp"
 #include "headingd/daemon/recorder/recording_files.hpp"
 #include "headingd/daemon/sources/source_registry.hpp"
-#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/daemon/system/realtime.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/live/clocks.hpp"
 #include "headingd/recording/recording_format.hpp"
 
 namespace headingd::daemon {
@@ -30,7 +30,7 @@ void Daemon::usePlace() {
   core::ConfiguredPlace& place = *config_.place;
   std::string warning;
   try {
-    place.decimal_year = core::placeDecimalYear(place, core::decimalYearOfUnixNs(realtimeNs()), *wmm_, &warning);
+    place.decimal_year = core::placeDecimalYear(place, core::decimalYearOfUnixNs(live::realtimeNs()), *wmm_, &warning);
   } catch (const core::ConfigError& e) {
     throw core::ConfigError(config_.source + ": " + e.what());
   }
@@ -147,7 +147,7 @@ void Daemon::start() {
   }
   loop_thread_ = std::thread([this] { loop_->run(); });
   // Read by the log sources from their own threads, which start below.
-  playback_clock_.start_mono_ns = monotonicNs() + std::llround(config_.sources.playback.start_delay_s * 1e9);
+  playback_clock_.start_mono_ns = live::monotonicNs() + std::llround(config_.sources.playback.start_delay_s * 1e9);
   for (auto& s : sources_) {
     // Named for ps, top and the tests ("src:can"); the kernel keeps 15 characters.
     s->setThreadStartHook([this, name = s->name(), driver = s->readsAtRealTimePace()] {

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "headingd/daemon/outputs/lcm_publisher.hpp"
-#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/heading_t.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -134,7 +134,7 @@ TEST(LcmPublisher, EveryFlushGoesOutOnTimeLateUnannouncedOrInline) {
     publisher.start([&] { sender_thread = std::this_thread::get_id(); });
     int sent = 0;
     const auto tick = [&](std::chrono::microseconds after_announced, std::chrono::microseconds announced_in) {
-      const std::int64_t due = monotonicNs() + announced_in.count() * 1000;
+      const std::int64_t due = live::monotonicNs() + announced_in.count() * 1000;
       publisher.expectFlushAt(due);
       std::this_thread::sleep_for(announced_in + after_announced);
       ASSERT_TRUE(publisher.publish("T", headingAt(sent++)));
@@ -161,18 +161,18 @@ TEST(LcmPublisher, EveryFlushGoesOutOnTimeLateUnannouncedOrInline) {
 
 TEST(LcmPublisher, TheSampleAgeIsMeasuredWhenTheMessageWasSent) {
   LcmPublisher publisher(kUrl, logLimit());
-  const std::int64_t arrival = monotonicNs() - 5'000'000;  // a sample that came 5 ms ago
+  const std::int64_t arrival = live::monotonicNs() - 5'000'000;  // a sample that came 5 ms ago
   ASSERT_TRUE(publisher.publish("T", headingAt(1), arrival));
   ASSERT_TRUE(publisher.publish("T", headingAt(2)));           // carries no sample: no age
   std::this_thread::sleep_for(std::chrono::milliseconds(20));  // queued, not yet sent
-  const std::int64_t before_send = monotonicNs();
+  const std::int64_t before_send = live::monotonicNs();
   publisher.start();
   publisher.stop();
   std::vector<std::int64_t> ages;
   publisher.drainSampleAges([&](std::int64_t age) { ages.push_back(age); });
   ASSERT_EQ(ages.size(), 1u);
   EXPECT_GE(ages[0], before_send - arrival);  // includes the time it waited in the queue
-  EXPECT_LT(ages[0], monotonicNs() - arrival + 1);
+  EXPECT_LT(ages[0], live::monotonicNs() - arrival + 1);
 }
 
 }  // namespace

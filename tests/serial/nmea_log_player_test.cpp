@@ -53,9 +53,9 @@ TEST(NmeaLogPlayer, PlaysAGpsdCaptureAtItsOwnPaceTimesTheSpeedFactor) {
   const auto want = referenceEpochs(readWireBytes(path), &want_counters);
   constexpr double kSpeed = 20.0;
   nmea::NmeaLogPlayerCounters c;
-  const std::int64_t t0 = monotonicNowNs();
+  const std::int64_t t0 = monotonicNs();
   const Played p = play({path.string(), kSpeed, 5.0, {}}, std::chrono::seconds(20), &c);
-  const std::int64_t t1 = monotonicNowNs();
+  const std::int64_t t1 = monotonicNs();
 
   ASSERT_TRUE(p.finished);
   EXPECT_EQ(p.fixes, want);
@@ -122,7 +122,9 @@ TEST(NmeaLogPlayer, UntimedLinesGoWithTheirEpochAndGapsMidnightAndResetsArePlaye
     due_s += step_s[k - 1] / kSpeed;
     const double got_s = static_cast<double>(p.receive_ns[k] - p.receive_ns[0]) * 1e-9;
     EXPECT_GE(got_s, due_s - 0.002) << "fix " << k;
-    EXPECT_LE(got_s, due_s + 0.06) << "fix " << k;
+    // Late only by the scheduler (ctest -j2 runs fuzzers beside): the 30 s gap played uncapped
+    // would be 2.8 s late, and fixes played at once would fail the bound above.
+    EXPECT_LE(got_s, due_s + 0.25) << "fix " << k;
   }
 }
 

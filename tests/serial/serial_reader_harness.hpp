@@ -41,7 +41,7 @@ class Harness {
           std::lock_guard lock(received.mutex);
           received.fixes.push_back(fixText(fix));
           received.receive_ns.push_back(receive_ns);
-          received.delivered_ns.push_back(monotonicNowNs());
+          received.delivered_ns.push_back(monotonicNs());
         },
         [this](std::string_view, std::int64_t) {
           std::lock_guard lock(received.mutex);

@@ -40,9 +40,9 @@ TEST_P(CaptureOverPty, DeliversTheParsersFixesAndCounters) {
   PtyPair pty;
   Harness h(testConfig(pty.slavePath()));
   ASSERT_TRUE(h.waitState(SerialGpsState::kOpen));
-  const std::int64_t t_start = monotonicNowNs();
+  const std::int64_t t_start = monotonicNs();
   pty.writePaced(wire, lineBytesPerSecond(115200));
-  const std::int64_t t_written = monotonicNowNs();
+  const std::int64_t t_written = monotonicNs();
   ASSERT_TRUE(h.waitBytes(wire.size()));
   ASSERT_TRUE(waitFor([&] { return h.received.fixCount() >= want.size(); }, std::chrono::seconds(3)));
 
@@ -116,9 +116,9 @@ TEST(SerialGpsReader, RealLineRateDeliversEachEpochAtTheEndOfItsBurst) {
   std::size_t from = 0;
   for (int burst = 0; burst < 3; ++burst) {
     const std::size_t to = cuts[static_cast<std::size_t>(burst)];
-    const std::int64_t t0 = monotonicNowNs();
+    const std::int64_t t0 = monotonicNs();
     pty.writePaced(std::span(wire).subspan(from, to - from), lineBytesPerSecond(9600));
-    const std::int64_t t1 = monotonicNowNs();
+    const std::int64_t t1 = monotonicNs();
     ASSERT_TRUE(
         waitFor([&] { return h.received.fixCount() >= static_cast<std::size_t>(burst + 1); }, std::chrono::seconds(2)));
     {

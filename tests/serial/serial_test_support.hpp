@@ -120,7 +120,7 @@ inline bool waitFor(const std::function<bool()>& pred, std::chrono::milliseconds
   return true;
 }
 
-inline std::int64_t monotonicNowNs() {
+inline std::int64_t monotonicNs() {
   timespec ts{};
   ::clock_gettime(CLOCK_MONOTONIC, &ts);
   return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <tuple>
 
-#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/daemon/system/logging.hpp"
 #include "headingd/daemon/system/realtime.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::daemon {
 
@@ -52,20 +52,20 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
 void EstimatorLoop::run() {
   pthread_setname_np(pthread_self(), "estimator");
   realtime_.applyToEstimatorThread();
-  start_ns_ = monotonicNs();
+  start_ns_ = live::monotonicNs();
   last_status_ns_ = start_ns_;
   std::int64_t deadline = start_ns_ + period_ns_;
   publisher_.expectFlushAt(deadline);
   bool ready_sent = false;
   while (!stop_requested_.load(std::memory_order_relaxed)) {
     if (doorbell_ != nullptr) publishArrivalsUntil(deadline);
-    const timespec ts = toTimespec(deadline);
+    const timespec ts = live::toTimespec(deadline);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
     }
-    const std::int64_t wake = monotonicNs();
+    const std::int64_t wake = live::monotonicNs();
     const bool exit_after_this_tick = sourcesWantExit();  // seen before draining: their data is all in
     tick(wake, exit_after_this_tick);
-    const std::int64_t done = monotonicNs();
+    const std::int64_t done = live::monotonicNs();
     recordTickTiming(wake - deadline, done - wake);
     deadline = nextDeadline(deadline, wake, done);
     publisher_.expectFlushAt(deadline);  // the LCM sender looks then
@@ -86,20 +86,20 @@ void EstimatorLoop::publishArrivalsUntil(std::int64_t deadline) {
   // The tick still runs at its deadline (STATUS, watchdog, stale data, GPS epochs without IMU
   // data) and publishes as always; between ticks each arrival is estimated and published
   // at once, so a heading is as old as the driver's and this work, not the tick's phase.
-  const timespec ts = toTimespec(deadline);
+  const timespec ts = live::toTimespec(deadline);
   std::uint32_t handled = doorbell_->count();
   while (!stop_requested_.load(std::memory_order_relaxed)) {
     const std::uint32_t seen = doorbell_->count();
-    if (monotonicNs() >= deadline) return;
+    if (live::monotonicNs() >= deadline) return;
     if (seen == handled) {
       doorbell_->waitWhile(seen, ts);
       continue;
     }
     handled = seen;
-    const std::int64_t utime_us = realtimeNs() / 1000;
+    const std::int64_t utime_us = live::realtimeNs() / 1000;
     drainRings();
-    feedPipeline(monotonicNs(), false, utime_us);
-    if (consumed_this_tick_) publishEstimate(monotonicNs(), utime_us);
+    feedPipeline(live::monotonicNs(), false, utime_us);
+    if (consumed_this_tick_) publishEstimate(live::monotonicNs(), utime_us);
     publisher_.flush();
   }
 }
@@ -144,11 +144,11 @@ void EstimatorLoop::tick(std::int64_t wake_ns, bool last_tick) {
   if (reload_requested_.exchange(false) && calibration_.reload()) {
     for (EstimateSink* sink : sinks_) sink->calibrationReloaded(imu_.last_used_t_ns, imu_processed_);
   }
-  const std::int64_t utime_us = realtimeNs() / 1000;
+  const std::int64_t utime_us = live::realtimeNs() / 1000;
   drainRings();
   feedPipeline(wake_ns, last_tick, utime_us);
   rings_.logDrops(wake_ns);
-  const std::int64_t now = monotonicNs();
+  const std::int64_t now = live::monotonicNs();
   publishEstimate(now, utime_us);
   publisher_.flush();  // the estimate goes out while STATUS is put together
   // The last tick too, so that STATUS shows the sources finished and their final counters.
@@ -159,7 +159,7 @@ void EstimatorLoop::tick(std::int64_t wake_ns, bool last_tick) {
 }
 
 void EstimatorLoop::drainRings() {
-  const auto processForcedOut = [this](const GpsRingEntry& oldest) { processGps(oldest, realtimeNs() / 1000); };
+  const auto processForcedOut = [this](const GpsRingEntry& oldest) { processGps(oldest, live::realtimeNs() / 1000); };
   rings_.drain(imu_batch_, [&](const GpsRingEntry& e) { gps_feed_.add(e, processForcedOut); });
   gps_feed_.sortHeld();
 }
@@ -226,7 +226,7 @@ void EstimatorLoop::publishEstimate(std::int64_t now_ns, std::int64_t utime_us) 
   t.sample_utime_us = imu_.last_used_t_ns / 1000;
   t.sample_age_us = imu_.any_used ? (now_ns - imu_.last_used_arrival_ns) / 1000 : 0;
   const PublishedEstimate estimate{pipeline_, validity(now_ns), t,
-                                   consumed_this_tick_ ? imu_.last_used_arrival_ns : LcmPublisher::kNoSample};
+                                   consumed_this_tick_ ? std::optional(imu_.last_used_arrival_ns) : std::nullopt};
   lcm_.estimate(estimate);
   for (EstimateSink* sink : sinks_) sink->estimate(estimate);
 }

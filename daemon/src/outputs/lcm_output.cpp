@@ -21,7 +21,8 @@ void LcmOutput::estimate(const PublishedEstimate& e) {
   fillHeading(heading_msg_, out, e.validity, e.times);
   fillAttitude(attitude_msg_, out, e.pipeline.estimator().ekf().covariance(), e.validity, e.times);
   // The sample's age is measured when HEADING has been sent, by the sender thread.
-  const bool heading_ok = publisher_.publish(config_.heading_channel, heading_msg_, e.fresh_arrival_ns);
+  const bool heading_ok =
+      publisher_.publish(config_.heading_channel, heading_msg_, e.fresh_arrival_ns.value_or(LcmPublisher::kNoSample));
   const bool attitude_ok = publisher_.publish(config_.attitude_channel, attitude_msg_);
   if (heading_ok && attitude_ok) ++published_.heading;
 }

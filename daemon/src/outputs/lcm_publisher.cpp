@@ -3,7 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <stdexcept>
 
-#include "headingd/daemon/system/clocks.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::daemon {
 
@@ -40,7 +40,7 @@ bool LcmPublisher::enqueue(std::size_t total, const std::string& channel) {
   if (queue_.write_available() < total) {
     ++queue_full_;
     std::uint64_t suppressed = 0;
-    if (queue_full_log_.allow(monotonicNs(), &suppressed)) {
+    if (queue_full_log_.allow(live::monotonicNs(), &suppressed)) {
       spdlog::warn(
           "LCM send queue full (the sender thread is behind): a message on {} not published ({} in total; "
           "{} such messages suppressed)",
@@ -61,7 +61,7 @@ void LcmPublisher::sendLoop() {
       return;
     }
     // Returns at once if a flush came since `seen`, early if stop() rings.
-    doorbell_.waitWhile(seen, toTimespec(nextLook(monotonicNs())));
+    doorbell_.waitWhile(seen, live::toTimespec(nextLook(live::monotonicNs())));
   }
 }
 
@@ -92,7 +92,7 @@ bool LcmPublisher::send(const std::string& channel, const std::uint8_t* payload,
     fail();
   }
   // A full ring only loses a figure, never a message.
-  if (header.sample_arrival_ns != kNoSample) sample_ages_.push(monotonicNs() - header.sample_arrival_ns);
+  if (header.sample_arrival_ns != kNoSample) sample_ages_.push(live::monotonicNs() - header.sample_arrival_ns);
   return sent;
 }
 

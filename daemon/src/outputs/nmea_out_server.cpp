@@ -17,8 +17,8 @@
 #include <utility>
 #include <vector>
 
-#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/daemon/system/repeat_limiter.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -295,7 +295,7 @@ class NmeaOutServer::Impl {
   void logLimited(RepeatLimiter& limiter, spdlog::level::level_enum level, fmt::format_string<Args...> format,
                   Args&&... args) {
     std::uint64_t suppressed = 0;
-    if (!limiter.allow(monotonicNs(), &suppressed)) return;
+    if (!limiter.allow(live::monotonicNs(), &suppressed)) return;
     std::string text = fmt::format(format, std::forward<Args>(args)...);
     if (suppressed != 0) text += fmt::format(" ({} such messages suppressed)", suppressed);
     spdlog::log(level, "{}", text);

@@ -7,8 +7,8 @@
 
 #include "headingd/core/toml_document.hpp"
 #include "headingd/daemon/sources/source_registry.hpp"
-#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/files/gzip_file.hpp"
+#include "headingd/live/clocks.hpp"
 #include "headingd/recording/recording_format.hpp"
 
 namespace headingd::daemon {
@@ -40,8 +40,8 @@ void set(toml::table& doc, std::string_view name, std::string_view key, std::str
 
 RecordingStart recordingStartNow(std::string program_version) {
   RecordingStart s;
-  s.monotonic_ns = monotonicNs();
-  s.realtime_ns = realtimeNs();
+  s.monotonic_ns = live::monotonicNs();
+  s.realtime_ns = live::realtimeNs();
   const std::int64_t offset = s.realtime_ns - s.monotonic_ns;
   s.can_time_offset_ns = offset - offset % 1000;
   s.program_version = std::move(program_version);

@@ -5,8 +5,8 @@
 #include "headingd/can/can_config_toml.hpp"
 #include "headingd/can/epoch_flush.hpp"
 #include "headingd/daemon/sources/can_assembler_report.hpp"
-#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/files/input_file.hpp"
+#include "headingd/live/clocks.hpp"
 #include "headingd/recording/recording_format.hpp"
 
 namespace headingd::daemon {
@@ -66,7 +66,7 @@ void CanImuSource::onFrame(const can::CanFrame& received, std::int64_t kernel_re
   // The offset is read now, microseconds after the frame; a wall-clock step in between is
   // undone by wall_to_monotonic.hpp.
   can::CanFrame frame = received;
-  const ClockReading now = readClocks(monotonicNs, realtimeNs);
+  const ClockReading now = readClocks(live::monotonicNs, live::realtimeNs);
   const std::int64_t t = kernel_realtime_ns != 0 ? wall_to_mono_.map(kernel_realtime_ns, now)
                                                  : now.monotonic_ns;  // no kernel timestamp: the best we know
   clock_steps_.store(wall_to_mono_.steps(), std::memory_order_relaxed);
@@ -77,7 +77,7 @@ void CanImuSource::onFrame(const can::CanFrame& received, std::int64_t kernel_re
 }
 
 void CanImuSource::onTick() {
-  const std::int64_t now = wholeMicroseconds(monotonicNs());
+  const std::int64_t now = wholeMicroseconds(live::monotonicNs());
   const bool was_open = assembler_->hasOpenEpoch();
   const can::AssembledSamples samples = can::flushEpoch(*assembler_, config_, flush_age_ns_, now);
   // Only a flush that closed an epoch changes anything, so only that one is recorded.

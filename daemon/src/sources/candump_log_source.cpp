@@ -10,9 +10,9 @@
 #include "headingd/daemon/sources/log_frame_times.hpp"
 #include "headingd/daemon/sources/median_step.hpp"
 #include "headingd/daemon/sources/readable_path.hpp"
-#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/files/gzip_file.hpp"
 #include "headingd/files/input_file.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::daemon {
 
@@ -164,7 +164,7 @@ bool CandumpLogSource::startNextLoop() {
 }
 
 void CandumpLogSource::playDue() {
-  const std::int64_t now = monotonicNs();
+  const std::int64_t now = live::monotonicNs();
   for (;;) {
     while (next_frame_ < frames_.size() && clock_->dueMonoNs(play_ns_[next_frame_] + loop_offset_ns_) <= now) {
       can::CanFrame frame = frames_[next_frame_++];

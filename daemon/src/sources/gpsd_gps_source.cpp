@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "headingd/daemon/system/clocks.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::daemon {
 std::unique_ptr<Source> GpsdGpsSourceConfig::createSource(SourceContext& context) const {
@@ -27,7 +27,7 @@ GpsdGpsSource::~GpsdGpsSource() { stop(); }
 
 void GpsdGpsSource::onProblem(std::string_view kind, const std::string& detail) {
   std::uint64_t suppressed = 0;
-  if (!problem_log_.allow(monotonicNs(), &suppressed)) return;
+  if (!problem_log_.allow(live::monotonicNs(), &suppressed)) return;
   if (suppressed > 0) {
     spdlog::warn("gps: gpsd line {}: {} ({} more not logged)", kind, detail, suppressed);
   } else {
@@ -45,21 +45,7 @@ void GpsdGpsSource::report(SourceReport& out) const {
     }
     out.setLastError(c.last_error);
     std::size_t i = reportPushes(out, "epochs_pushed");
-    out.set(i++, "epochs", c.epochs);
-    out.set(i++, "late_reports", c.late_reports);
-    out.set(i++, "bytes", c.lines.bytes);
-    out.set(i++, "lines", c.lines.lines);
-    out.set(i++, "oversized_lines", c.lines.oversized);
-    out.set(i++, "cut_lines", c.lines.cut);
-    out.set(i++, "tpv_reports", c.tpv_reports);
-    out.set(i++, "sky_reports", c.sky_reports);
-    out.set(i++, "other_reports", c.other_reports);
-    out.set(i++, "malformed", c.malformed);
-    out.set(i++, "missing_fields", c.missing_fields);
-    out.set(i++, "connect_attempts", c.connect_attempts);
-    out.set(i++, "connect_failures", c.connect_failures);
-    out.set(i++, "connects", c.connects);
-    out.set(i++, "disconnects", c.disconnects);
+    gpsd::forEachCounter(c, [&](const char* name, std::uint64_t v) { out.set(i++, name, v); });
   });
 }
 

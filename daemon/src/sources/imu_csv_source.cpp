@@ -8,9 +8,9 @@
 #include "headingd/core/toml_table_reader.hpp"
 #include "headingd/daemon/sources/median_step.hpp"
 #include "headingd/daemon/sources/readable_path.hpp"
-#include "headingd/daemon/system/clocks.hpp"
 #include "headingd/files/imu_csv.hpp"
 #include "headingd/files/nmea_epochs.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::daemon {
 
@@ -100,7 +100,7 @@ void ImuCsvSource::run() {
     return;
   }
   const std::int64_t file_t0 = imu_.front().t_ns;
-  const std::int64_t start_mono = monotonicNs() + static_cast<std::int64_t>(config_.start_delay_s * 1e9);
+  const std::int64_t start_mono = live::monotonicNs() + static_cast<std::int64_t>(config_.start_delay_s * 1e9);
   // Play time of a file time `t` (ns) in loop `loop`.
   const double speed = config_.speed;
   auto playAt = [&](std::int64_t t_ns) {
@@ -120,8 +120,8 @@ void ImuCsvSource::run() {
           next_gps >= gps_.size() || (next_imu < imu_.size() && imu_[next_imu].t_ns <= gps_[next_gps].t_ns);
       const std::int64_t t = imu_next ? imu_[next_imu].t_ns : gps_[next_gps].t_ns;
       const std::int64_t due = playAt(t + offset - axis_offset);
-      if (due > monotonicNs() && !sleepUntil(due)) return;
-      const std::int64_t now = monotonicNs();
+      if (due > live::monotonicNs() && !sleepUntil(due)) return;
+      const std::int64_t now = live::monotonicNs();
       if (imu_next) {
         ImuRingEntry e;
         e.sample = imu_[next_imu++];

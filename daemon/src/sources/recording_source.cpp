@@ -4,7 +4,7 @@
 #include <chrono>
 
 #include "headingd/core/toml_table_reader.hpp"
-#include "headingd/daemon/system/clocks.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::daemon {
 namespace {
@@ -89,7 +89,7 @@ bool RecordingSource::pushStep(const recording::RecordingStep& step, std::int64_
 }
 
 void RecordingSource::playDue() {
-  const std::int64_t now = monotonicNs();
+  const std::int64_t now = live::monotonicNs();
   try {
     while (true) {
       if (!pending_) {

@@ -34,13 +34,7 @@ void SerialGpsSource::report(SourceReport& out) const {
     }
     out.setLastError(c.last_error);
     std::size_t i = reportPushes(out, "epochs_pushed");
-    out.set(i++, "epochs", c.epochs.epochs);
-    out.set(i++, "reads", c.reads);
-    out.set(i++, "read_errors", c.read_errors);
-    out.set(i++, "disconnects", c.disconnects);
-    out.set(i++, "open_attempts", c.open_attempts);
-    out.set(i++, "reopens", c.reopens);
-    out.set(i++, "port_busy", c.port_busy);
+    nmea::forEachCounter(c, [&](const char* name, std::uint64_t v) { out.set(i++, name, v); });
     nmea::forEachCounter(c.parser, [&](const char* name, std::uint64_t v) { out.set(i++, "nmea_", name, v); });
   });
 }

@@ -9,8 +9,8 @@
 #include <boost/asio/error.hpp>
 #include <boost/asio/write.hpp>
 
+#include "headingd/live/clocks.hpp"
 #include "headingd/live/link_error.hpp"
-#include "headingd/live/monotonic_clock.hpp"
 
 namespace headingd::gpsd {
 namespace {
@@ -114,7 +114,7 @@ void GpsdClient::startRead() {
                                                             const boost::system::error_code& ec, std::size_t n) {
     if (alive.expired() || ec == boost::asio::error::operation_aborted || !socket_.is_open()) return;
     if (n > 0) {
-      const std::int64_t receive_ns = live::monotonicNowNs();
+      const std::int64_t receive_ns = live::monotonicNs();
       framer_.feed(std::span<const std::uint8_t>(buffer_.data(), n),
                    [&](std::string_view line) { onLine(line, receive_ns); });
       const auto oversized = framer_.counters().oversized;

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "headingd/live/monotonic_clock.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::live {
 
@@ -27,7 +27,7 @@ void EpochIdleTimer::waitFor(std::chrono::nanoseconds wait) {
 }
 
 void EpochIdleTimer::onTimer() {
-  const auto quiet_for = std::chrono::nanoseconds(monotonicNowNs() - last_receive_ns_);
+  const auto quiet_for = std::chrono::nanoseconds(monotonicNs() - last_receive_ns_);
   const auto idle = secondsToNs(idle_s_);
   if (quiet_for >= idle) {
     end_epoch_();

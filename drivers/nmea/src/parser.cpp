@@ -3,25 +3,6 @@
 #include "headingd/nmea/sentences.hpp"
 
 namespace headingd::nmea {
-namespace {
-
-std::uint64_t& perTypeCounter(SentenceCounters& c, SentenceType t) {
-  switch (t) {
-    case SentenceType::kGGA: return c.gga;
-    case SentenceType::kRMC: return c.rmc;
-    case SentenceType::kVTG: return c.vtg;
-    case SentenceType::kGNS: return c.gns;
-    case SentenceType::kGSA: return c.gsa;
-    case SentenceType::kGST: return c.gst;
-    case SentenceType::kHDT: return c.hdt;
-    case SentenceType::kZDA: return c.zda;
-    case SentenceType::kGLL: return c.gll;
-  }
-  return c.gga;
-}
-
-}  // namespace
-
 Parser::Parser(ParserConfig config) : framer_(config.framer), accumulator_(config.accumulator) {}
 
 void Parser::feed(std::span<const std::uint8_t> bytes, std::vector<FixUpdate>& updates) {
@@ -52,7 +33,7 @@ void Parser::handleLine(std::string_view line, std::vector<FixUpdate>& updates) 
   }
   const DecodedSentence& s = *r.sentence;
   ++sentences_.decoded;
-  ++perTypeCounter(sentences_, s.type);
+  ++sentences_.decodedOf(s.type);
   sentences_.invalid_fields += static_cast<std::uint64_t>(s.invalid_fields);
   accumulator_.apply(s);
   updates.push_back(FixUpdate{s.talker, s.type, std::string(line), accumulator_.fix()});

@@ -15,19 +15,28 @@ const char* talkerName(Talker t) {
   return "??";
 }
 
-const char* sentenceTypeName(SentenceType t) {
-  switch (t) {
-    case SentenceType::kGGA: return "GGA";
-    case SentenceType::kRMC: return "RMC";
-    case SentenceType::kVTG: return "VTG";
-    case SentenceType::kGNS: return "GNS";
-    case SentenceType::kGSA: return "GSA";
-    case SentenceType::kGST: return "GST";
-    case SentenceType::kHDT: return "HDT";
-    case SentenceType::kZDA: return "ZDA";
-    case SentenceType::kGLL: return "GLL";
-  }
-  return "???";
+namespace {
+
+// Indexed by SentenceType: the address's three letters, and the name of its STATUS counter.
+struct SentenceTypeNames {
+  const char* code;
+  const char* counter;
+};
+constexpr std::array<SentenceTypeNames, kSentenceTypes.size()> kSentenceTypeNames{{{"GGA", "gga"},
+                                                                                   {"RMC", "rmc"},
+                                                                                   {"VTG", "vtg"},
+                                                                                   {"GNS", "gns"},
+                                                                                   {"GSA", "gsa"},
+                                                                                   {"GST", "gst"},
+                                                                                   {"HDT", "hdt"},
+                                                                                   {"ZDA", "zda"},
+                                                                                   {"GLL", "gll"}}};
+
+}  // namespace
+
+const char* sentenceTypeName(SentenceType t) { return kSentenceTypeNames.at(static_cast<std::size_t>(t)).code; }
+const char* sentenceTypeCounterName(SentenceType t) {
+  return kSentenceTypeNames.at(static_cast<std::size_t>(t)).counter;
 }
 
 std::optional<Talker> talkerFromCode(std::string_view code) {
@@ -38,9 +47,7 @@ std::optional<Talker> talkerFromCode(std::string_view code) {
 }
 
 std::optional<SentenceType> sentenceTypeFromCode(std::string_view code) {
-  for (const SentenceType t :
-       {SentenceType::kGGA, SentenceType::kRMC, SentenceType::kVTG, SentenceType::kGNS, SentenceType::kGSA,
-        SentenceType::kGST, SentenceType::kHDT, SentenceType::kZDA, SentenceType::kGLL}) {
+  for (const SentenceType t : kSentenceTypes) {
     if (code == sentenceTypeName(t)) return t;
   }
   return std::nullopt;

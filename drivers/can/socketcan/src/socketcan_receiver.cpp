@@ -12,7 +12,7 @@
 #include <cstring>
 #include <ctime>
 
-#include "headingd/live/monotonic_clock.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::can {
 namespace {

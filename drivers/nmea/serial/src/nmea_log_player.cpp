@@ -6,7 +6,7 @@
 #include <variant>
 
 #include "headingd/files/input_file.hpp"
-#include "headingd/live/monotonic_clock.hpp"
+#include "headingd/live/clocks.hpp"
 #include "headingd/nmea/checksum.hpp"
 #include "headingd/nmea/comment_filter.hpp"
 #include "headingd/nmea/sentences.hpp"
@@ -155,7 +155,7 @@ void NmeaLogPlayer::scheduleNext() {
 
 void NmeaLogPlayer::playGroup() {
   const Group& g = groups_[next_group_++];
-  assembler_.feed(std::span<const std::uint8_t>(bytes_.data() + g.begin, g.end - g.begin), live::monotonicNowNs());
+  assembler_.feed(std::span<const std::uint8_t>(bytes_.data() + g.begin, g.end - g.begin), live::monotonicNs());
   assembler_.completeEpoch();
   ++counters_.groups_played;
   scheduleNext();

@@ -10,8 +10,8 @@
 #include <spdlog/spdlog.h>
 #include <boost/asio/error.hpp>
 
+#include "headingd/live/clocks.hpp"
 #include "headingd/live/link_error.hpp"
-#include "headingd/live/monotonic_clock.hpp"
 #include "headingd/nmea/serial_port_open.hpp"
 
 namespace headingd::nmea {
@@ -98,7 +98,7 @@ void SerialGpsReader::startRead() {
 void SerialGpsReader::onRead(const boost::system::error_code& ec, std::size_t n) {
   if (!port_.is_open()) return;  // closed after this read completed
   if (n > 0) {
-    const std::int64_t receive_ns = live::monotonicNowNs();
+    const std::int64_t receive_ns = live::monotonicNs();
     ++counters_.reads;
     const std::span<const std::uint8_t> bytes(buffer_.data(), n);
     if (tap_ != nullptr) tap_->fed(bytes, receive_ns);
@@ -115,7 +115,7 @@ void SerialGpsReader::onRead(const boost::system::error_code& ec, std::size_t n)
 }
 
 void SerialGpsReader::endQuietEpoch() {
-  if (tap_ != nullptr && assembler_.epochPending()) tap_->epochCompleted(live::monotonicNowNs());
+  if (tap_ != nullptr && assembler_.epochPending()) tap_->epochCompleted(live::monotonicNs());
   assembler_.completeEpoch();
 }
 
@@ -152,7 +152,7 @@ void SerialGpsReader::lose(const std::string& why) {
 }
 
 void SerialGpsReader::endStream() {
-  if (tap_ != nullptr) tap_->streamEnded(live::monotonicNowNs());
+  if (tap_ != nullptr) tap_->streamEnded(live::monotonicNs());
   assembler_.endOfStream();
 }
 

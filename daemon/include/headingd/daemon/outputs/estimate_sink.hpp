@@ -5,6 +5,7 @@
 // module publishes). Every call comes on the estimator thread and must not block; each default
 // does nothing, so a sink overrides only what it uses.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "headingd/core/heading_pipeline.hpp"
@@ -20,9 +21,9 @@ struct PublishedEstimate {
   const core::HeadingPipeline& pipeline;  // output() and the estimator's state (covariance)
   Validity validity;
   PublishTimes times;
-  // The newest sample's arrival (CLOCK_MONOTONIC) when this estimate used a new sample, else
-  // LcmPublisher::kNoSample: the LCM sender measures a sample's age only once.
-  std::int64_t fresh_arrival_ns;
+  // The newest sample's arrival (CLOCK_MONOTONIC) when this estimate used a new sample, empty
+  // when it did not: a sink that measures a sample's age measures it only once.
+  std::optional<std::int64_t> fresh_arrival_ns;
 };
 
 class EstimateSink {

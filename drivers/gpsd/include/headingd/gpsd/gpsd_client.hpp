@@ -55,6 +55,27 @@ struct GpsdCounters {
   std::string last_error;  // empty until something went wrong; kept after recovery
 };
 
+// Calls fn(name, value) for every counter, in a fixed order, with stable snake_case names
+// (STATUS lists them so).
+template <class Fn>
+void forEachCounter(const GpsdCounters& c, Fn&& fn) {
+  fn("epochs", c.epochs);
+  fn("late_reports", c.late_reports);
+  fn("bytes", c.lines.bytes);
+  fn("lines", c.lines.lines);
+  fn("oversized_lines", c.lines.oversized);
+  fn("cut_lines", c.lines.cut);
+  fn("tpv_reports", c.tpv_reports);
+  fn("sky_reports", c.sky_reports);
+  fn("other_reports", c.other_reports);
+  fn("malformed", c.malformed);
+  fn("missing_fields", c.missing_fields);
+  fn("connect_attempts", c.connect_attempts);
+  fn("connect_failures", c.connect_failures);
+  fn("connects", c.connects);
+  fn("disconnects", c.disconnects);
+}
+
 // A line that was not used: kind ("malformed", "missing_fields", "oversized", "cut") and what.
 using ProblemHandler = std::function<void(std::string_view kind, const std::string& detail)>;
 

@@ -24,7 +24,7 @@ class EpochIdleTimer {
   EpochIdleTimer(const EpochIdleTimer&) = delete;
   EpochIdleTimer& operator=(const EpochIdleTimer&) = delete;
 
-  // Input received at `receive_ns` (monotonicNowNs()) was fed to the epoch: the quiet period
+  // Input received at `receive_ns` (monotonicNs()) was fed to the epoch: the quiet period
   // starts again, and the timer runs if an epoch is pending and it does not run already.
   void fed(std::int64_t receive_ns);
   // The input closed: the timer stops without ending the epoch (its owner ends the stream).

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "headingd/live/monotonic_clock.hpp"
+#include "headingd/live/clocks.hpp"
 
 namespace headingd::live {
 

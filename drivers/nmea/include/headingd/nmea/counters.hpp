@@ -1,9 +1,12 @@
 #pragma once
 // Everything the parser counts, for STATUS reports and the dump tool. Framing counters come
 // from the Framer; these are the ones about lines that passed the checksum.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "headingd/nmea/framer.hpp"
+#include "headingd/nmea/sentence.hpp"
 
 namespace headingd::nmea {
 
@@ -13,16 +16,11 @@ struct SentenceCounters {
   std::uint64_t unsupported_type = 0;    // GNSS talker, sentence we do not decode: ignored
   std::uint64_t malformed = 0;           // ours, but a field count NMEA does not allow
   std::uint64_t invalid_fields = 0;      // unparsable fields in decoded sentences (left out)
-  std::uint64_t decoded = 0;             // sum of the per-type counts below
-  std::uint64_t gga = 0;
-  std::uint64_t rmc = 0;
-  std::uint64_t vtg = 0;
-  std::uint64_t gns = 0;
-  std::uint64_t gsa = 0;
-  std::uint64_t gst = 0;
-  std::uint64_t hdt = 0;
-  std::uint64_t zda = 0;
-  std::uint64_t gll = 0;
+  std::uint64_t decoded = 0;             // the sum of the per-type counts
+  std::array<std::uint64_t, kSentenceTypes.size()> decoded_by_type{};  // indexed by SentenceType
+
+  std::uint64_t& decodedOf(SentenceType t) { return decoded_by_type[static_cast<std::size_t>(t)]; }
+  std::uint64_t decodedOf(SentenceType t) const { return decoded_by_type[static_cast<std::size_t>(t)]; }
 };
 
 struct Counters {
@@ -30,7 +28,8 @@ struct Counters {
   SentenceCounters sentences;
 };
 
-// Calls fn(name, value) for every counter, in a fixed order, with stable snake_case names.
+// Calls fn(name, value) for every counter, in a fixed order, with stable snake_case names
+// (a sentence type's count under its type in lower case: "gga").
 template <class Fn>
 void forEachCounter(const Counters& c, Fn&& fn) {
   const auto& f = c.framing;
@@ -49,15 +48,7 @@ void forEachCounter(const Counters& c, Fn&& fn) {
   fn("malformed", s.malformed);
   fn("invalid_fields", s.invalid_fields);
   fn("decoded", s.decoded);
-  fn("gga", s.gga);
-  fn("rmc", s.rmc);
-  fn("vtg", s.vtg);
-  fn("gns", s.gns);
-  fn("gsa", s.gsa);
-  fn("gst", s.gst);
-  fn("hdt", s.hdt);
-  fn("zda", s.zda);
-  fn("gll", s.gll);
+  for (const SentenceType t : kSentenceTypes) fn(sentenceTypeCounterName(t), s.decodedOf(t));
 }
 
 }  // namespace headingd::nmea

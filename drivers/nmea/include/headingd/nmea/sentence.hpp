@@ -16,9 +16,13 @@ enum class Talker { kGP, kGN, kGL, kGA, kGB, kGQ, kBD };
 // GLL is decoded too: its time marks the start of an epoch on receivers that send it
 // first (ericsson-gru04.log: GLL, VTG, ZDA, GNS), which keeps VTG in the right epoch.
 enum class SentenceType { kGGA, kRMC, kVTG, kGNS, kGSA, kGST, kHDT, kZDA, kGLL };
+inline constexpr std::array<SentenceType, 9> kSentenceTypes{SentenceType::kGGA, SentenceType::kRMC, SentenceType::kVTG,
+                                                            SentenceType::kGNS, SentenceType::kGSA, SentenceType::kGST,
+                                                            SentenceType::kHDT, SentenceType::kZDA, SentenceType::kGLL};
 
 const char* talkerName(Talker t);
-const char* sentenceTypeName(SentenceType t);
+const char* sentenceTypeName(SentenceType t);         // "GGA"
+const char* sentenceTypeCounterName(SentenceType t);  // "gga", its count's name on STATUS
 std::optional<Talker> talkerFromCode(std::string_view two_letters);
 std::optional<SentenceType> sentenceTypeFromCode(std::string_view three_letters);
 

@@ -58,6 +58,19 @@ struct SerialGpsCounters {
   std::string last_error;  // empty until something went wrong; kept after recovery
 };
 
+// Calls fn(name, value) for the reader's own counters, in a fixed order, with stable
+// snake_case names; the parser's are nmea::forEachCounter(c.parser, ...).
+template <class Fn>
+void forEachCounter(const SerialGpsCounters& c, Fn&& fn) {
+  fn("epochs", c.epochs.epochs);
+  fn("reads", c.reads);
+  fn("read_errors", c.read_errors);
+  fn("disconnects", c.disconnects);
+  fn("open_attempts", c.open_attempts);
+  fn("reopens", c.reopens);
+  fn("port_busy", c.port_busy);
+}
+
 class SerialGpsReader {
  public:
   SerialGpsReader(boost::asio::io_context& io, SerialGpsConfig config, FixHandler on_fix, LineHandler on_line = {});
