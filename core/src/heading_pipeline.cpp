@@ -63,6 +63,7 @@ HeadingPipeline::HeadingPipeline(const EstimatorParams& params, const WorldMagne
       estimator_(params),
       gait_(params.gait_window_s),
       course_minus_heading_(params.decl_direction_width_rad, static_cast<int>(params.decl_min_direction_epochs)) {
+  if (wmm_ != nullptr) gps_dates_.emplace(*wmm_);
   updateDeclination();  // no source yet: declination unknown (σ = ∞), mounting yaw the prior
 }
 
@@ -75,6 +76,7 @@ SampleVerdict HeadingPipeline::process(const ImuSample& s) {
     updateOutput();
     return verdict;
   }
+  units_.add(s, a.dt_s);
   if (a.mag_disturbed) {
     last_disturbed_ns_ = s.t_ns;
     ever_disturbed_ = true;
@@ -137,14 +139,33 @@ bool HeadingPipeline::useModelAt(const GeodeticPosition& position, double decima
 
 bool HeadingPipeline::setPlace(const GeodeticPosition& position, double decimal_year) {
   if (wmm_ == nullptr || !useModelAt(position, decimal_year)) return false;
+  gps_dates_->seed(decimal_year);
   updateDeclination();
   updateOutput();
   return true;
 }
 
+bool HeadingPipeline::seedGpsDate(double decimal_year) {
+  if (wmm_ == nullptr || !wmm_->isDateWithinValidity(decimal_year)) return false;
+  gps_dates_->seed(decimal_year);
+  return true;
+}
+
 const char* HeadingPipeline::processGps(const GpsObservation& given) {
   const char* problem = nullptr;
-  const GpsObservation gps = usableValues(given, gps_values_ignored_, &problem);
+  GpsObservation gps = usableValues(given, gps_values_ignored_, &problem);
+  if (gps.decimal_year && gps_dates_) {
+    bool believed = true;
+    gps.decimal_year = gps_dates_->dateFor(*gps.decimal_year, gps.t_ns, &believed);
+    if (!believed) {
+      ++gps_values_ignored_;
+      if (problem == nullptr) {
+        problem =
+            "date outside the World Magnetic Model's validity or far from the date in use (a receiver's default "
+            "date, a GPS week-number rollover): the model is evaluated on the date in use";
+      }
+    }
+  }
   const bool model_there = gps.fix_ok && gps.position && gps.decimal_year && wmm_ != nullptr;
   if (model_there && !useModelAt(*gps.position, *gps.decimal_year)) {
     ++gps_values_ignored_;  // a date so far from the model's epoch that the field overflows

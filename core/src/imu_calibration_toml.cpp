@@ -70,6 +70,21 @@ ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string
   }
   calibration.rejectUnknownKeys();
 
+  // Values no sensor's calibration has are refused, not applied: a scale factor is within tens
+  // of percent of 1 (0.5 .. 2 leaves room for any MEMS part), a gyro bias below 1 rad/s (57°/s),
+  // an accelerometer bias below 10 m/s², a hard-iron offset below 5000 µT (beyond every
+  // magnetometer's range). A file beyond them is another unit or another file.
+  const auto scaleOf = [](TomlTableReader& r, const Vec3& fallback) {
+    const Vec3 s = r.vec3("scale", fallback, "1 (unitless)");
+    if (s.minCoeff() <= 0.0) r.fail("scale", "expected positive scale factors");
+    if (s.minCoeff() < 0.5 || s.maxCoeff() > 2.0) r.fail("scale", "expected scale factors within 0.5 .. 2");
+    return s;
+  };
+  const auto within = [](TomlTableReader& r, const char* key, const Vec3& v, double limit, const char* unit) {
+    if (v.cwiseAbs().maxCoeff() > limit) {
+      r.fail(key, "expected each component within ±" + num(limit) + " " + unit + " (no sensor's calibration has more)");
+    }
+  };
   TomlTableReader mag(tableOf(doc, "magnetometer", source), source, "magnetometer");
   c.mag.D = mag.mat3("D", c.mag.D);
   const double size = c.mag.D.norm();
@@ -77,6 +92,7 @@ ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string
     mag.fail("D", "expected an invertible matrix (this one is singular)");
   }
   c.mag.offset_uT = mag.vec3("offset_uT", c.mag.offset_uT, "uT");
+  within(mag, "offset_uT", c.mag.offset_uT, 5000.0, "uT");
   if (mag.has("field_norm_uT")) {
     c.mag.field_norm_uT = mag.finite("field_norm_uT", 0.0, "uT");
     if (!(c.mag.field_norm_uT > 0.0 && c.mag.field_norm_uT < 1000.0))
@@ -98,19 +114,16 @@ ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string
   if (mag.has("noise_sigma_uT")) c.mag.noise_sigma_uT = mag.vec3("noise_sigma_uT", Vec3::Zero(), "uT");
   mag.rejectUnknownKeys();
 
-  const auto scaleOf = [](TomlTableReader& r, const Vec3& fallback) {
-    const Vec3 s = r.vec3("scale", fallback, "1 (unitless)");
-    if (s.minCoeff() <= 0.0) r.fail("scale", "expected positive scale factors");
-    return s;
-  };
   TomlTableReader gyro(tableOf(doc, "gyroscope", source), source, "gyroscope");
   c.gyro.bias_rad_s = gyro.vec3("bias_rad_s", c.gyro.bias_rad_s, "rad/s");
+  within(gyro, "bias_rad_s", c.gyro.bias_rad_s, 1.0, "rad/s");
   c.gyro.scale = scaleOf(gyro, c.gyro.scale);
   if (gyro.has("noise_sigma_rad_s")) c.gyro.noise_sigma_rad_s = gyro.vec3("noise_sigma_rad_s", Vec3::Zero(), "rad/s");
   gyro.rejectUnknownKeys();
 
   TomlTableReader accel(tableOf(doc, "accelerometer", source), source, "accelerometer");
   c.accel.bias_m_s2 = accel.vec3("bias_m_s2", c.accel.bias_m_s2, "m/s^2");
+  within(accel, "bias_m_s2", c.accel.bias_m_s2, 10.0, "m/s^2");
   c.accel.scale = scaleOf(accel, c.accel.scale);
   if (accel.has("noise_sigma_m_s2")) c.accel.noise_sigma_m_s2 = accel.vec3("noise_sigma_m_s2", Vec3::Zero(), "m/s^2");
   accel.rejectUnknownKeys();
@@ -120,6 +133,15 @@ ImuCalibration parseImuCalibration(std::string_view toml_text, const std::string
   if (quality.has("coverage")) c.provenance.coverage = quality.finite("coverage", 0.0, "(a fraction 0 .. 1)");
   if (quality.has("condition_number")) c.provenance.condition_number = quality.finite("condition_number", 0.0, "1");
   quality.rejectUnknownKeys();
+  // A file without one correction (empty, or only provenance) would apply nothing, silently:
+  // not a calibration (a partial one, such as a hard-iron offset alone, is).
+  if (!mag.has("D") && !mag.has("offset_uT") && !gyro.has("bias_rad_s") && !gyro.has("scale") &&
+      !accel.has("bias_m_s2") && !accel.has("scale")) {
+    throw ConfigError(source +
+                      ": no correction in it: expected at least one of [magnetometer] D or offset_uT, "
+                      "[gyroscope] bias_rad_s or scale, [accelerometer] bias_m_s2 or scale (headingd-calibrate "
+                      "writes them all)");
+  }
   return c;
 }
 

@@ -38,6 +38,21 @@ void Daemon::usePlace() {
   spdlog::info("{}", core::describePlace(place.position, *place.decimal_year, *wmm_));
 }
 
+void Daemon::seedGpsDate() {
+  // The system clock is today's date only for live sources (files carry their own dates), and
+  // [place] has given one already.
+  if (config_.gps_date_seed || config_.place || wmm_ == nullptr || !hasLiveSource(config_.sources)) return;
+  const double today = core::decimalYearOfUnixNs(live::realtimeNs());
+  if (!wmm_->isDateWithinValidity(today)) {
+    spdlog::warn(
+        "the system clock's date ({:.2f}) is outside {}'s validity: GPS dates are checked against the "
+        "model's validity only",
+        today, wmm_->modelName());
+    return;
+  }
+  config_.gps_date_seed = today;
+}
+
 Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   calibration_ = loadCalibration(config_.calibration_path);
   if (!config_.wmm_path.empty()) {
@@ -45,6 +60,7 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
         core::parseWmmCoefficients(files::readMaybeGzipFile(config_.wmm_path, files::kWmmFileLimit), config_.wmm_path));
   }
   if (config_.place) usePlace();
+  seedGpsDate();
   // Each source gets its own rings (single producer each); see daemon/README.md, "Sources".
   const SourceConfigs& configs = config_.sources;
   makeRecorder();

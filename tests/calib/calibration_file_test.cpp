@@ -59,16 +59,19 @@ TEST(CalibrationFile, RoundTrip) {
 // Found by fuzzing (tests/fuzz/corpus/calibration_toml/escapes): a string holding a control
 // character (read from an escape) was written back raw, which TOML does not allow.
 TEST(CalibrationFile, StringsWithControlCharactersAreWrittenBackReadable) {
-  const core::ImuCalibration a =
-      core::parseImuCalibration("[calibration]\nmethod = \"a\\u0001\\t\\u007F\\\"b\"\n", "calib.toml");
+  const core::ImuCalibration a = core::parseImuCalibration(
+      "[calibration]\nmethod = \"a\\u0001\\t\\u007F\\\"b\"\n[gyroscope]\nscale = [1, 1, 1]\n", "calib.toml");
   ASSERT_EQ(a.provenance.method, "a\x01\t\x7F\"b");
   const std::string written = core::formatImuCalibration(a);
   EXPECT_NE(written.find("method = \"a\\u0001\t\\u007F\\\"b\""), std::string::npos) << written;
   EXPECT_EQ(core::parseImuCalibration(written, "written.toml").provenance.method, a.provenance.method);
 }
 
-TEST(CalibrationFile, EmptyDocumentIsIdentity) {
-  const core::ImuCalibration c = core::parseImuCalibration("", "empty.toml");
+// An empty document is refused (ErrorsNameFileLineKeyAndExpectation); one that states the
+// identity is the identity.
+TEST(CalibrationFile, AStatedIdentityIsTheIdentity) {
+  const core::ImuCalibration c = core::parseImuCalibration(
+      "[magnetometer]\noffset_uT = [0, 0, 0]\n[gyroscope]\nbias_rad_s = [0, 0, 0]\n", "identity.toml");
   EXPECT_EQ(c.mag.D, Mat3::Identity());
   const core::ImuCorrection correction(c);
   core::ImuSample s;
@@ -118,6 +121,19 @@ TEST(CalibrationFile, ErrorsNameFileLineKeyAndExpectation) {
               "calib.toml:2: [calibration] sample_range: expected [first, end)");
   expectError("[magnetometer]\nD = \n", "calib.toml:2: TOML syntax error");
   expectError("magnetometer = 3\n", "calib.toml:1: 'magnetometer' must be a table");
+  // Values no sensor's calibration has (another unit, another file) are refused, not applied.
+  expectError("[gyroscope]\nscale = [1, 3, 1]\n",
+              "calib.toml:2: [gyroscope] scale: expected scale factors within 0.5 .. 2");
+  expectError("[gyroscope]\nbias_rad_s = [0, 0, 1.5]\n",
+              "calib.toml:2: [gyroscope] bias_rad_s: expected each component within ±1.0 rad/s");
+  expectError("[accelerometer]\nbias_m_s2 = [0, -12, 0]\n",
+              "[accelerometer] bias_m_s2: expected each component within ±10.0");
+  expectError("[magnetometer]\noffset_uT = [6000, 0, 0]\n",
+              "[magnetometer] offset_uT: expected each component within ±5000.0 uT");
+  // A file that lacks every correction is not taken for the identity (hardening round two).
+  expectError("", "calib.toml: no correction in it: expected at least one of [magnetometer] D or offset_uT");
+  expectError("[calibration]\nmethod = \"ml\"\n[quality]\ncoverage = 0.5\n", "calib.toml: no correction in it");
+  EXPECT_NO_THROW((void)core::parseImuCalibration("[gyroscope]\nbias_rad_s = [0.01, 0, 0]\n", "calib.toml"));
 }
 
 TEST(CalibrationFile, SingularCorrectionIsRefused) {

@@ -2,6 +2,8 @@
 // gaps, malformed frames; with counters (headingd frame set) and by time (OpenIMU, J1939).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
 #include <vector>
 
 #include "can_test_support.hpp"
@@ -271,6 +273,35 @@ TEST(EpochAssembler, MalformedFramesAreCounted) {
   EXPECT_EQ(n.error_frames, 1u);
   EXPECT_EQ(n.decoded_frames, 0u);
   EXPECT_EQ(n.frames, 5u);
+}
+
+// A gyro pinned at its signal's full scale measured more than it says: counted (STATUS shows
+// full_scale_values, the sources warn), the value used as read.
+TEST(EpochAssembler, ValuesAtTheirFullScaleAreCountedAndUsedAsRead) {
+  Fixture fx("can-headingd.toml");
+  EpochAssembler a(fx.codec(), fx.settings());
+  Collector c;
+  for (const auto& f : fx.epoch(0)) c.take(a.push(f));
+  EXPECT_EQ(a.counters().full_scale_values, 0u);
+  core::ImuSample spinning = sampleAt(1);
+  spinning.gyro_rad_s.z() = 1000.0;  // beyond the signal's ±52.4 rad/s
+  spinning.accel_m_s2.x() = -500.0;  // beyond its ±104.9 m/s²
+  std::vector<CanFrame> frames;
+  EXPECT_EQ(fx.codec().encode(spinning, 1, true, frames), 2);  // written at the signals' ends
+  for (auto& f : frames) {
+    f.t_ns = spinning.t_ns;
+    c.take(a.push(f));
+  }
+  EXPECT_EQ(a.counters().full_scale_values, 2u);
+  ASSERT_EQ(c.samples.size(), 2u);
+  EXPECT_NEAR(c.samples[1].gyro_rad_s.z(), 52.4287, 1e-9);
+  EXPECT_NEAR(c.samples[1].accel_m_s2.x(), -104.8576, 1e-9);
+  // Remote frames and superseded late magnetometer values reach STATUS by name too.
+  std::vector<std::string> names;
+  forEachCounter(a.counters(), [&](const char* name, std::uint64_t) { names.emplace_back(name); });
+  for (const char* name : {"full_scale_values", "remote_frames", "superseded_mag_frames"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  }
 }
 
 TEST(EpochAssembler, J1939ByTimeAnySourceAddressAndPriority) {

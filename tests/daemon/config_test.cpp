@@ -172,6 +172,11 @@ TEST(DaemonConfig, RelativePathsAreTakenFromTheConfigFolder) {
   const DaemonConfig c = loadDaemonConfig(dir.write("ok.toml", "[imu_csv]\nenabled = true\npath = \"imu.csv\"\n"));
   EXPECT_EQ(tableOr<ImuCsvSourceConfig>(c).imu_csv_path, dir.path() + "/imu.csv");
   EXPECT_TRUE(tableOr<ImuCsvSourceConfig>(c).enabled);
+  EXPECT_FALSE(tableOr<ImuCsvSourceConfig>(c).no_mag);  // a file without mag_* is refused at start
+  const DaemonConfig six = loadDaemonConfig(dir.write(
+      "six.toml", "[imu_csv]\nenabled = true\npath = \"imu.csv\"\nno_mag = true\n[daemon]\ngps_date_seed = 2026.5\n"));
+  EXPECT_TRUE(tableOr<ImuCsvSourceConfig>(six).no_mag);
+  EXPECT_EQ(six.gps_date_seed, 2026.5);
 }
 
 TEST(DaemonConfig, EmptyFileGivesTheDocumentedDefaults) {

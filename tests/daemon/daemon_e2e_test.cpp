@@ -164,6 +164,10 @@ TEST(DaemonEndToEnd, BroadTrialAtTenTimesRealTimeMatchesTheOfflineReplay) {
                                                      "gps_epochs_used_for_declination",
                                                      "gps_epochs_forced_out",
                                                      "gps_values_ignored",
+                                                     "gps_dates_not_believed",
+                                                     "units_suspect_accel",
+                                                     "units_suspect_gyro",
+                                                     "units_suspect_mag",
                                                      "log_write_errors"}));
   EXPECT_EQ(last.num_counters, static_cast<std::int32_t>(last.counters.size()));
   const std::string summary = test::readFile(dir.file("err"));

@@ -39,8 +39,11 @@ std::optional<headingd::source_status_t> lastSource(const LcmCollector& lcm, con
 int testPort(int offset) { return 30000 + (getpid() % 10000) * 2 + offset; }
 
 std::string daemonConfig(const std::string& url, const std::string& gps_table) {
-  return "[daemon]\nstatus_period_s = 0.25\nwmm = \"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" + url +
-         "\"\n[recorder]\nenabled = false\n[imu_csv]\nenabled = true\npath = \"" + kDemoImuCsv +
+  // The TPVs' dates are 2026-06-01: the GPS dates are checked against that day, not the
+  // system clock's (gps_date_seed).
+  return "[daemon]\nstatus_period_s = 0.25\ngps_date_seed = 2026.41\nwmm = "
+         "\"" HEADINGD_CONFIG_DIR "/wmm/WMM2025.COF\"\n[lcm]\nurl = \"" +
+         url + "\"\n[recorder]\nenabled = false\n[imu_csv]\nenabled = true\npath = \"" + kDemoImuCsv +
          "\"\ntime_axis = \"monotonic\"\n[gps]\n" + gps_table;
 }
 
@@ -254,7 +257,13 @@ TEST(DaemonGpsdSource, MisbehavingPeerIsCountedLoggedAndReconnectedWithoutAStall
   sendAll(peer, "{\"class\":\"TPV\",\"mode\":3,\"lat\":\n");  // malformed
   sendAll(peer, "\x01\x02 binary garbage\n");                 // malformed
   sendAll(peer, R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:02.000Z"})"
-                "\n");                                                                // no lat/lon
+                "\n");  // no lat/lon
+  sendAll(peer, R"({"class":"TPV","time":"2026-06-01T12:00:03.000Z","lat":59.33,"lon":18.07})"
+                "\n");  // no mode: not a fix, no epoch
+  // 1024 weeks before 2026-06-01 (a receiver after a week-number rollover): the epoch is
+  // delivered, but the World Magnetic Model is not evaluated on its date.
+  sendAll(peer, R"({"class":"TPV","mode":3,"time":"2006-10-16T12:00:04.000Z","lat":59.33,"lon":18.07})"
+                "\n");
   sendAll(peer, std::string(100000, 'x') + "\n");                                     // oversized
   sendAll(peer, R"({"class":"TPV","mode":3,"time":"2026-06-01T12:00:03.000Z","la)");  // cut
   std::this_thread::sleep_for(200ms);
@@ -282,7 +291,7 @@ TEST(DaemonGpsdSource, MisbehavingPeerIsCountedLoggedAndReconnectedWithoutAStall
   ASSERT_TRUE(waitUntil(
       [&] {
         const auto g = lastSource(lcm, "gps_gpsd");
-        return g && g->state == "running" && counter(*g, "epochs") >= 7;
+        return g && g->state == "running" && counter(*g, "epochs") >= 8;
       },
       3s));
   daemon.signal(SIGTERM);
@@ -293,23 +302,24 @@ TEST(DaemonGpsdSource, MisbehavingPeerIsCountedLoggedAndReconnectedWithoutAStall
 
   const auto g = *lastSource(lcm, "gps_gpsd");
   EXPECT_EQ(counter(g, "malformed"), 2);
-  EXPECT_EQ(counter(g, "missing_fields"), 1);
+  EXPECT_EQ(counter(g, "missing_fields"), 2);
   EXPECT_EQ(counter(g, "oversized_lines"), 1);
   EXPECT_EQ(counter(g, "cut_lines"), 1);
   EXPECT_EQ(counter(g, "connects"), 2);
   EXPECT_GE(counter(g, "connect_failures"), 2);
   EXPECT_EQ(counter(g, "disconnects"), 1);
-  EXPECT_EQ(counter(g, "epochs"), 7);  // 12:00:01, 12:00:02 (no position), 12:00:10 .. 14
+  EXPECT_EQ(counter(g, "epochs"), 8);  // 12:00:01, 12:00:02 (no position), the 2006 one, 12:00:10 .. 14
+  EXPECT_EQ(statusCounter(lcm.status().back().message, "gps_dates_not_believed"), 1);
   const auto gps = lcm.gps();
-  ASSERT_EQ(gps.size(), 7u);
+  ASSERT_EQ(gps.size(), 8u);
   EXPECT_TRUE(gps[0].message.fix_ok);
   EXPECT_FALSE(gps[1].message.fix_ok);
   EXPECT_NEAR(gps.back().message.latitude_deg, 59.34 + 14e-5, 1e-9);
   EXPECT_NEAR(gps.back().message.course_rad * kDegPerRad, 45.0, 1e-9);
   const std::string log = test::readFile(dir.file("err"));
-  for (const char* kind :
-       {"gpsd line malformed: not JSON", "gpsd line missing_fields: TPV without lat/lon", "gpsd line oversized",
-        "gpsd line cut", "gpsd closed the connection", "connected to gpsd at 127.0.0.1"}) {
+  for (const char* kind : {"gpsd line malformed: not JSON", "gpsd line missing_fields: TPV without lat/lon",
+                           "gpsd line missing_fields: TPV without mode (not used)", "gpsd line oversized",
+                           "gpsd line cut", "gpsd closed the connection", "connected to gpsd at 127.0.0.1"}) {
     EXPECT_NE(log.find(kind), std::string::npos) << kind << "\n" << log;
   }
   std::fprintf(stderr, "gpsd source after the misbehaving peer: %s\n", g.last_error.c_str());

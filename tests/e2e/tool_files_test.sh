@@ -73,19 +73,40 @@ expect_status 1 "is a directory" "$eval_tool" --estimates "$work" --reference "$
 # 6. A GPS value that cannot be used (an RMC magnetic variation of 200 degrees) is left out and
 #    counted in the replay's JSON: by the NMEA parser (nmea_invalid_fields); what passes the
 #    parser but not the estimator's own checks is counted as gps_values_ignored, as on STATUS.
-python3 - "$work/bad_variation.nmea" <<'PYTHON'
+# write_rmc FILE TIME,DATE,VARIATION_EAST... : RMC sentences with valid checksums, one a field set.
+write_rmc() {
+  python3 - "$@" <<'PYTHON'
 import functools, operator, sys
 with open(sys.argv[1], "w") as out:
-    for i, variation in enumerate(["2.0", "200.0", "2.0"]):
-        body = f"GPRMC,1200{i:02d}.00,A,5230.000,N,01320.000,E,1.0,90.0,010626,{variation},E,A"
+    for fields in sys.argv[2:]:
+        time, date, variation = fields.split(",")
+        body = f"GPRMC,{time},A,5230.000,N,01320.000,E,1.0,90.0,{date},{variation},{'E' if variation else ''},A"
         checksum = functools.reduce(operator.xor, body.encode(), 0)
         out.write(f"${body}*{checksum:02X}\r\n")
 PYTHON
+}
+write_rmc "$work/bad_variation.nmea" 120000.00,010626,2.0 120001.00,010626,200.0 120002.00,010626,2.0
 "$replay" --imu-csv "$work/in.csv" --nmea "$work/bad_variation.nmea" --out "$work/gps.csv" 2>"$work/err" ||
   fail "replay with NMEA failed: $(cat "$work/err")"
 grep -q '"gps_epochs":3,.*"gps_values_ignored":0,.*"nmea_invalid_fields":1,' "$work/err" ||
   fail "the bad variation is not counted: $(cat "$work/err")"
 echo "ok: $(grep -o '"gps_epochs[^n]*' "$work/err")"
+
+# 6b. A date that parses but is not today (1024 weeks back, a receiver after a GPS week-number
+#     rollover) is not the date the World Magnetic Model is evaluated on: counted, and the
+#     epochs before it give the date in use.
+write_rmc "$work/rollover.nmea" 120000.00,010626, 120000.20,010626, 120000.40,161006, 120000.60,161006,  # in the IMU's 1 s
+"$replay" --imu-csv "$work/in.csv" --nmea "$work/rollover.nmea" --out "$work/gps.csv" 2>"$work/err" ||
+  fail "replay with NMEA failed: $(cat "$work/err")"
+grep -q '"gps_epochs":4,.*"gps_values_ignored":2,"gps_dates_not_believed":2,' "$work/err" ||
+  fail "the rollover dates are not counted: $(cat "$work/err")"
+echo "ok: $(grep -o '"gps_epochs[^n]*' "$work/err")"
+
+# 6c. An output named - is standard output (it was a file named '-').
+(cd "$work" && "$replay" --imu-csv in.csv --out - >stdout.csv 2>/dev/null) || fail "--out - failed"
+[[ ! -e "$work/-" ]] || fail "--out - wrote a file named '-'"
+[[ $(wc -l <"$work/stdout.csv") == 301 ]] || fail "--out - wrote $(wc -l <"$work/stdout.csv") lines to stdout"
+echo "ok: --out - is standard output"
 
 # 7. Bad options: 2, as every --help footer says.
 for tool in "$replay" "$eval_tool" "$nmea_dump" "$wmm"; do

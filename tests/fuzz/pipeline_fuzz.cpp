@@ -99,11 +99,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   FuzzedDataProvider in(data, size);
   core::HeadingPipeline pipeline(core::EstimatorParams{}, in.ConsumeBool() ? &worldMagneticModel() : nullptr);
   std::int64_t t_ns = in.ConsumeIntegralInRange<std::int64_t>(0, 2'000'000'000'000'000'000);
-  std::uint64_t given = 0, first = 0, used = 0;
+  std::uint64_t given = 0, first = 0, used = 0, dated_epochs = 0;
   core::SampleCounters verdicts;
   while (in.remaining_bytes() > 0) {
     if (in.ConsumeIntegralInRange<int>(0, 19) == 0) {
-      pipeline.processGps(observation(in, t_ns));
+      const core::GpsObservation g = observation(in, t_ns);
+      dated_epochs += g.decimal_year ? 1 : 0;
+      pipeline.processGps(g);
       checkOutput(pipeline);
       continue;
     }
@@ -131,5 +133,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint64_t rejected = c.duplicate_time + c.backwards_time + c.non_finite + c.out_of_range;
   FUZZ_CHECK(used == first + c.accepted + c.gaps + c.clock_jumps);
   FUZZ_CHECK(given == used + rejected);
+  // A date not believed is one of the epochs' dates, and a value left out (gps_date_check.hpp).
+  FUZZ_CHECK(pipeline.gpsDatesNotBelieved() <= dated_epochs);
+  FUZZ_CHECK(pipeline.gpsDatesNotBelieved() <= pipeline.gpsValuesIgnored());
   return 0;
 }

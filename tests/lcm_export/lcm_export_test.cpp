@@ -6,6 +6,7 @@
 
 #include <fstream>
 
+#include "headingd/lcm_export/lcm_log_reader.hpp"
 #include "lcm_export_test_support.hpp"
 #include "lcm_schema.hpp"
 
@@ -271,6 +272,29 @@ TEST(LcmExport, AbsurdLengthAndUndecodableMessageAreReportedAtTheirEvent) {
   std::ofstream(log, std::ios::binary | std::ios::trunc) << bytes;
   expectBadLog(work.path(), log, "byte " + std::to_string(offsets[1]) + ": absurd data length -1");
   EXPECT_EQ(readCsv(work.path() / "HEADING.csv").rows.size(), 1u);
+}
+
+// An event header that claims 200 MiB of data in a log of a few kB: reported as a cut event
+// before anything is allocated (it was allocated first, and died of bad_alloc under a memory
+// limit, exporting nothing).
+TEST_F(LcmExportBadLog, ALengthBeyondTheFileIsNotAllocated) {
+  const std::size_t at = 5;
+  std::string bytes = readText(log);
+  const std::uint8_t claimed[4] = {0x0C, 0x80, 0x00, 0x00};  // 209 715 200
+  std::copy(std::begin(claimed), std::end(claimed), bytes.begin() + static_cast<std::ptrdiff_t>(offsets[at] + 24));
+  std::ofstream(log, std::ios::binary | std::ios::trunc) << bytes;
+  LcmLogReader reader(log);
+  LcmLogEvent event;
+  for (std::size_t i = 0; i < at; ++i) ASSERT_TRUE(reader.next(event));
+  try {
+    reader.next(event);
+    ADD_FAILURE() << "read";
+  } catch (const LcmLogError& e) {
+    EXPECT_EQ(e.offset(), offsets[at]);
+    EXPECT_NE(std::string(e.what()).find("truncated event: it needs "), std::string::npos) << e.what();
+  }
+  EXPECT_LT(event.data.capacity(), std::size_t{1} << 20);
+  expectBadLog(work.path(), log, "byte " + std::to_string(offsets[at]) + ": truncated event: it needs ");
 }
 
 // A status_t whose num_sources says 50 000 000 in 100-odd bytes: reported at once (the

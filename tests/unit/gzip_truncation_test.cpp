@@ -22,10 +22,10 @@ namespace {
 std::string noisyImuCsv(int rows) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> noise(-1.0, 1.0);
-  std::string text = "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n";
+  std::string text = "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y,mag_z\n";
   for (int i = 0; i < rows; ++i) {
     text += std::to_string(i * 0.01);
-    for (int c = 0; c < 6; ++c) text += "," + std::to_string(noise(rng));
+    for (int c = 0; c < 9; ++c) text += "," + std::to_string(noise(rng));
     text += "\n";
   }
   return text;
@@ -120,12 +120,12 @@ TEST_F(GzipFiles, ImuTimesBeyondInt64NanosecondsAreAnError) {
   for (const char* t : {"9300000000", "-9300000000", "1e300"}) {
     const std::string path = writePlain(
         "far.csv", std::string("t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.8\n") + t + ",0,0,0,0,0,9.8\n");
-    const std::string m = errorOf([&] { readImuCsv(path); });
+    const std::string m = errorOf([&] { readImuCsv(path, MagColumns::kIgnored); });
     EXPECT_NE(m.find(path + ":3: column 't': time "), std::string::npos) << t << ": " << m;
     EXPECT_NE(m.find("beyond ±9e9 s"), std::string::npos) << m;
   }
   const std::string ok = writePlain("ok.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n8999999999.5,0,0,0,0,0,9.8\n");
-  EXPECT_GT(readImuCsv(ok).at(0).t_ns, 8'999'999'999'000'000'000);
+  EXPECT_GT(readImuCsv(ok, MagColumns::kIgnored).at(0).t_ns, 8'999'999'999'000'000'000);
 }
 
 }  // namespace

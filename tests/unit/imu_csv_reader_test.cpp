@@ -46,8 +46,8 @@ void expectSameSamples(const std::vector<core::ImuSample>& a, const std::vector<
 }
 
 // The message of the CsvError that reading the whole file ends with, and the samples before it.
-std::string errorAfterRows(const std::string& path, std::size_t* rows_before) {
-  ImuCsvReader reader(path);
+std::string errorAfterRows(const std::string& path, std::size_t* rows_before, MagColumns mag = MagColumns::kRequired) {
+  ImuCsvReader reader(path, mag);
   core::ImuSample s;
   *rows_before = 0;
   try {
@@ -93,7 +93,7 @@ TEST_F(ImuCsvReaderFiles, ALineLongerThanTheBuffer) {
   const std::string long_field(600000, 'x');  // an ignored column, longer than the read buffer
   const std::string path = writeGzip("long.csv.gz", "note,t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n" + long_field +
                                                         ",1.5,0.1,0.2,0.3,0.4,0.5,0.6\nshort,1.6,1,2,3,4,5,6\n");
-  ImuCsvReader reader(path);
+  ImuCsvReader reader(path, MagColumns::kIgnored);
   EXPECT_FALSE(reader.hasMag());
   const auto samples = readAll(reader);
   ASSERT_EQ(samples.size(), 2u);
@@ -133,18 +133,18 @@ TEST_F(ImuCsvReaderFiles, TruncatedLastLineAsBefore) {
 
   const std::string cut_number =
       writePlain("cutnum.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,-9.81\n0.01,0,0,0,0,0,-9.");
-  ImuCsvReader reader(cut_number);
+  ImuCsvReader reader(cut_number, MagColumns::kIgnored);
   const auto samples = readAll(reader);
   ASSERT_EQ(samples.size(), 2u);
   EXPECT_EQ(samples[1].accel_m_s2.z(), -9.0);
-  expectSameSamples(samples, readImuCsv(cut_number));
+  expectSameSamples(samples, readImuCsv(cut_number, MagColumns::kIgnored));
 }
 
 TEST_F(ImuCsvReaderFiles, BlankLinesSkippedButCounted) {
   const std::string path =
       writePlain("blank.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,1\n\n \r\n0.01,0,0,0,0,0,x\n");
   std::size_t before = 0;
-  const std::string message = errorAfterRows(path, &before);
+  const std::string message = errorAfterRows(path, &before, MagColumns::kIgnored);
   EXPECT_EQ(before, 1u);
   EXPECT_NE(message.find(path + ":5: column 'acc_z'"), std::string::npos) << message;
 }
@@ -152,6 +152,8 @@ TEST_F(ImuCsvReaderFiles, BlankLinesSkippedButCounted) {
 TEST_F(ImuCsvReaderFiles, HeaderErrorsAtOpen) {
   EXPECT_THROW(ImuCsvReader(writePlain("empty.csv", "")), CsvError);
   EXPECT_THROW(ImuCsvReader(writePlain("nocol.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_z\n")), CsvError);
+  EXPECT_THROW(ImuCsvReader(writePlain("six.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n")), CsvError);
+  EXPECT_NO_THROW(ImuCsvReader(writePlain("six.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n"), MagColumns::kIgnored));
   EXPECT_THROW(ImuCsvReader((dir_ / "missing.csv").string()), CsvError);
 }
 

@@ -21,9 +21,10 @@ const std::vector<std::string> kImuColumns = {"t", "gyr_x", "gyr_y", "gyr_z", "a
 
 class CsvFiles : public TempCsvFiles {
  protected:
-  // The CsvError message of reading `path` as IMU CSV, or "" if it read.
+  // The CsvError message of reading `path` as IMU CSV, or "" if it read (most files here are
+  // 6-axis, read as declared so).
   static std::string imuErrorOf(const std::string& path) {
-    return messageOf<CsvError>([&] { readImuCsv(path); });
+    return messageOf<CsvError>([&] { readImuCsv(path, MagColumns::kIgnored); });
   }
 };
 
@@ -72,7 +73,7 @@ TEST_F(CsvFiles, ColumnsInAnyOrderAndExtraColumnsIgnored) {
                                       "note,acc_z,t,gyr_z,acc_x,extra,gyr_x,acc_y,gyr_y\n"
                                       "hello,-9.81,1.5,0.3,0.1,not a number,0.1,0.2,0.2\n"
                                       "world,-9.80,1.51,0.6,0.4,,0.4,0.5,0.5\n");
-  const auto samples = readImuCsv(path);
+  const auto samples = readImuCsv(path, MagColumns::kIgnored);
   ASSERT_EQ(samples.size(), 2u);
   EXPECT_EQ(samples[0].t_ns, 1'500'000'000);
   EXPECT_EQ(samples[1].t_ns, 1'510'000'000);
@@ -82,15 +83,54 @@ TEST_F(CsvFiles, ColumnsInAnyOrderAndExtraColumnsIgnored) {
   EXPECT_EQ(samples[1].accel_m_s2, core::Vec3(0.4, 0.5, -9.80));
 }
 
-TEST_F(CsvFiles, MissingMagColumnsMeanNoMag) {
+TEST_F(CsvFiles, AFileWithoutTheMagnetometerIsRefusedUnlessDeclaredSixAxis) {
   const std::string path = writePlain("nomag.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,-9.81\n");
-  const auto samples = readImuCsv(path);
+  const std::string m = messageOf<CsvError>([&] { readImuCsv(path); });
+  EXPECT_NE(
+      m.find(path + ":1: header lacks the magnetometer's columns 'mag_x', 'mag_y', 'mag_z'; a 6-axis "
+                    "recording is read only when declared so (headingd-replay --no-mag, [imu_csv] no_mag = true)"),
+      std::string::npos)
+      << m;
+  const auto samples = readImuCsv(path, MagColumns::kIgnored);
   ASSERT_EQ(samples.size(), 1u);
   EXPECT_FALSE(samples[0].has_mag);
-  // Only some of the three: still no magnetometer.
+  EXPECT_EQ(samples[0].accel_m_s2, core::Vec3(0, 0, -9.81));
+}
+
+TEST_F(CsvFiles, OneMisspeltMagnetometerColumnIsNamedNotDroppedSilently) {
+  // The hidden run's file: mag_Z for mag_z was replayed without the magnetometer, exit 0.
+  const std::string path =
+      writePlain("mag_Z.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y,mag_Z\n0,0,0,0,0,0,-9.81,1,2,3\n");
+  const std::string m = messageOf<CsvError>([&] { readImuCsv(path); });
+  EXPECT_NE(m.find(path + ":1: header lacks the magnetometer's column 'mag_z' (the header has 'mag_Z': names are "
+                          "case-sensitive)"),
+            std::string::npos)
+      << m;
+  // Two of the three are refused alike; declared 6-axis, the columns that are there are not read.
   const std::string partial =
       writePlain("partial.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y\n0,0,0,0,0,0,-9.81,1,2\n");
-  EXPECT_FALSE(readImuCsv(partial)[0].has_mag);
+  EXPECT_NE(messageOf<CsvError>([&] { readImuCsv(partial); }).find("lacks the magnetometer's column 'mag_z'"),
+            std::string::npos);
+  EXPECT_FALSE(readImuCsv(partial, MagColumns::kIgnored)[0].has_mag);
+  // A required column in another case is named the same way.
+  const std::string upper = writePlain("upper.csv", "t,gyr_x,gyr_y,gyr_z,ACC_X,acc_y,acc_z\n0,0,0,0,0,0,-9.81\n");
+  EXPECT_NE(imuErrorOf(upper).find(":1: header has no column 'acc_x' (it has 'ACC_X': names are case-sensitive)"),
+            std::string::npos)
+      << imuErrorOf(upper);
+}
+
+TEST_F(CsvFiles, AColumnNamedTwiceIsRefusedNotTheFirstTaken) {
+  const std::string path =
+      writePlain("twice.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y,mag_z,t\n0,0,0,0,0,0,-9.81,1,2,3,5\n");
+  const std::string m = messageOf<CsvError>([&] { readImuCsv(path); });
+  EXPECT_NE(m.find(path + ":1: column 't' is named twice in the header (fields 1 and 11)"), std::string::npos) << m;
+}
+
+TEST_F(CsvFiles, DeclaredSixAxisIgnoresMagnetometerColumnsThatAreThere) {
+  const std::string path =
+      writePlain("nine.csv", "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y,mag_z\n0,0,0,0,0,0,-9.81,1,2,3\n");
+  EXPECT_TRUE(readImuCsv(path)[0].has_mag);
+  EXPECT_FALSE(readImuCsv(path, MagColumns::kIgnored)[0].has_mag);
 }
 
 TEST_F(CsvFiles, NanAndOtherNumberFormsAreValues) {

@@ -138,6 +138,11 @@ int main(int argc, char** argv) {
   app.add_option("--place-date", place_date, "YYYY-MM-DD: the date for --place (default: today, as the daemon)")
       ->needs(place_option);
   place_option->excludes(recording_option);
+  bool no_mag = false;
+  auto* no_mag_option =
+      app.add_flag("--no-mag", no_mag,
+                   "read no magnetometer: a 6-axis recording (without it, a file lacking one of mag_x, mag_y, mag_z is "
+                   "refused), or a run without the field; the heading then runs on the gyro alone");
   bool smooth = false;
   auto* smooth_option = app.add_flag(
       "--smooth", smooth,
@@ -147,6 +152,7 @@ int main(int argc, char** argv) {
       "bytes per sample: 78 MB per hour at 100 Hz); not with --nmea or --recording. The counters are the forward "
       "filter's");
   smooth_option->excludes(recording_option);
+  no_mag_option->excludes(recording_option);
   app.footer(
       std::string(
           "Exit codes: 0 replayed and written, 1 an input cannot be read or is malformed, or an output cannot be "
@@ -184,7 +190,7 @@ int main(int argc, char** argv) {
       return headingd::replay::replayRecording(recording);
     }
     const core::EstimatorParams params = loadParams(config);
-    files::ImuCsvReader imu(imu_csv);
+    files::ImuCsvReader imu(imu_csv, no_mag ? files::MagColumns::kIgnored : files::MagColumns::kRequired);
     const bool calibrated = !calib_path.empty();
     core::CalibratedImuStream calibration;
     if (calibrated) {
@@ -226,6 +232,7 @@ int main(int argc, char** argv) {
     replay::printCounters(pipeline.estimator().counters(), totals);
     if (calibrated) replay::printMagCalibration(calibration.magFit());
     if (with_gps) replay::printGps(gps, pipeline);
+    replay::printSensorUnits(pipeline);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-replay: %s\n", e.what());
     return 1;

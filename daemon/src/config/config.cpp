@@ -45,6 +45,7 @@ DaemonConfig parseDaemonConfig(std::string_view text, const std::string& source,
   c.publish_on_imu = daemon.choice("publish", c.publish_on_imu ? "imu" : "tick", {"tick", "imu"}) == "imu";
   c.wmm_path = readablePath(daemon, "wmm", c.wmm_path, base_dir, true, files::kWmmFileLimit);
   c.calibration_path = readablePath(daemon, "calibration", c.calibration_path, base_dir, true, files::kConfigFileLimit);
+  if (daemon.has("gps_date_seed")) c.gps_date_seed = daemon.number("gps_date_seed", 0.0, 1900.0, 2200.0, "year");
   daemon.rejectUnknownKeys();
 
   TomlTableReader log(doc["log"].as_table(), source, "log");

@@ -41,6 +41,7 @@ EstimatorLoop::EstimatorLoop(const DaemonConfig& config, const core::WorldMagnet
   if (config.place && config.place->decimal_year) {
     pipeline_.setPlace(config.place->position, *config.place->decimal_year);
   }
+  if (config.gps_date_seed) pipeline_.seedGpsDate(*config.gps_date_seed);
   for (const Source* s : sources_) source_names_.push_back(s->name());
   source_reports_.resize(sources_.size());
   status_msg_.sources.resize(sources_.size());
@@ -186,6 +187,11 @@ void EstimatorLoop::processImu(const ImuRingEntry& raw, std::int64_t utime_us) {
   const core::SampleVerdict verdict = pipeline_.process(e.sample);
   ++imu_processed_;
   imu_.last_any_arrival_ns = std::max(imu_.last_any_arrival_ns, e.arrival_mono_ns);
+  if (!units_told_ && pipeline_.sensorUnits().decided()) {
+    units_told_ = true;
+    const std::string units = pipeline_.sensorUnits().describe();
+    if (!units.empty()) spdlog::warn("IMU samples not in SI units? {}", units);
+  }
   if (core::sampleUsed(verdict)) {
     imu_.any_used = true;
     consumed_this_tick_ = true;
@@ -272,6 +278,10 @@ LoopCounters EstimatorLoop::loopCounters() const {
   c.gps_epochs_used_for_declination = pipeline_.gpsEpochsUsedForDeclination();
   c.gps_epochs_forced_out = gps_feed_.forcedOut();
   c.gps_values_ignored = pipeline_.gpsValuesIgnored();
+  c.gps_dates_not_believed = pipeline_.gpsDatesNotBelieved();
+  c.units_suspect_accel = pipeline_.sensorUnits().accelSuspect() ? 1 : 0;
+  c.units_suspect_gyro = pipeline_.sensorUnits().gyroSuspect() ? 1 : 0;
+  c.units_suspect_mag = pipeline_.sensorUnits().magSuspect() ? 1 : 0;
   c.log_write_errors = logWriteErrors();
   return c;
 }

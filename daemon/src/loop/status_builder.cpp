@@ -130,6 +130,10 @@ void fillCounters(status_t& m, const core::EstimatorCounters& estimator, const L
   add("gps_epochs_used_for_declination", loop.gps_epochs_used_for_declination);
   add("gps_epochs_forced_out", loop.gps_epochs_forced_out);
   add("gps_values_ignored", loop.gps_values_ignored);
+  add("gps_dates_not_believed", loop.gps_dates_not_believed);
+  add("units_suspect_accel", loop.units_suspect_accel);
+  add("units_suspect_gyro", loop.units_suspect_gyro);
+  add("units_suspect_mag", loop.units_suspect_mag);
   add("log_write_errors", loop.log_write_errors);
   m.num_counters = static_cast<std::int32_t>(i);
 }

@@ -65,6 +65,11 @@ std::vector<std::pair<std::string, std::string>> recordingFiles(const DaemonConf
       place->insert_or_assign("decimal_year", *config.place->decimal_year);
     }
   }
+  if (config.gps_date_seed) {
+    // The date the run's GPS dates were checked against (the system's, when it gave it).
+    if (!doc.contains("daemon")) doc.insert("daemon", toml::table{});
+    doc["daemon"].as_table()->insert_or_assign("gps_date_seed", *config.gps_date_seed);
+  }
   if (!config.wmm_path.empty()) {
     copy(kWmmFile, config.wmm_path, files::kWmmFileLimit);
     set(doc, "daemon", "wmm", kWmmFile);

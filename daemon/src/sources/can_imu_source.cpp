@@ -74,6 +74,7 @@ void CanImuSource::onFrame(const can::CanFrame& received, std::int64_t kernel_re
   frame.t_ns = wholeMicroseconds(t);
   if (recorder_ != nullptr) recorder_->frame(frame);
   pushSamples(assembler_->push(frame));
+  full_scale_warning_.look(assembler_->counters(), now.monotonic_ns, "can");
 }
 
 void CanImuSource::onTick() {

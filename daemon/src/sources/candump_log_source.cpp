@@ -172,6 +172,7 @@ void CandumpLogSource::playDue() {
       // The flush on the log's own time: what a receiver with perfect timing would have seen.
       pushSamples(can::flushEpoch(*assembler_, can_config_, flush_age_ns_, frame.t_ns));
       pushSamples(assembler_->push(frame));
+      full_scale_warning_.look(assembler_->counters(), now, "candump_log");
       frames_played_.fetch_add(1, std::memory_order_relaxed);
     }
     if (next_frame_ < frames_.size()) break;

@@ -32,6 +32,7 @@ std::unique_ptr<SourceConfig> parseImuCsvSource(const SourceTable& table) {
     csv.fail("time_axis",
              "\"monotonic\" needs speed = 1.0 (at another speed the file's time steps would not be the clock's)");
   }
+  c->no_mag = csv.boolean("no_mag", c->no_mag);
   csv.rejectUnknownKeys();
   return c;
 }
@@ -52,7 +53,8 @@ std::unique_ptr<Source> ImuCsvSourceConfig::createSource(SourceContext& context)
 ImuCsvSource::ImuCsvSource(std::string name, const ImuCsvSourceConfig& config, std::uint16_t source_index,
                            SampleRing<ImuRingEntry>* imu_ring, SampleRing<GpsRingEntry>* gps_ring)
     : name_(std::move(name)), config_(config), source_index_(source_index), imu_ring_(imu_ring), gps_ring_(gps_ring) {
-  imu_ = files::readImuCsv(config_.imu_csv_path);
+  imu_ = files::readImuCsv(config_.imu_csv_path,
+                           config_.no_mag ? files::MagColumns::kIgnored : files::MagColumns::kRequired);
   if (!config_.nmea_path.empty()) {
     files::NmeaEpochs epochs = files::readNmeaEpochs(config_.nmea_path, config_.nmea_first_epoch_t_s);
     gps_ = std::move(epochs.epochs);

@@ -1,6 +1,7 @@
 #include "headingd/can/epoch_assembler.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace headingd::can {
@@ -131,6 +132,7 @@ AssembledSamples EpochAssembler::push(const CanFrame& frame) {
     case DecodeStatus::error_frame: ++counters_.error_frames; return out;
   }
   ++counters_.decoded_frames;
+  counters_.full_scale_values += static_cast<std::uint64_t>(std::popcount(d.full_scale_mask));
   const std::int64_t t = frame.t_ns;
   const bool counted = d.has_sequence && pending_.has_sequence;
 

@@ -147,8 +147,10 @@ DecodeStatus ImuFrameCodec::decode(const CanFrame& frame, DecodedFrame& out) con
   if (frame.len != binding->dlc) return DecodeStatus::wrong_length;
   out.axis_mask = binding->axis_mask;
   out.message = binding;
+  out.full_scale_mask = 0;
   for (const auto& a : binding->axes) {
     out.values[static_cast<std::size_t>(a.axis)] = decodeSignal(a.signal, frame.data) * a.scale_to_si;
+    if (atFullScale(a.signal, frame.data)) out.full_scale_mask |= static_cast<std::uint16_t>(1u << a.axis);
   }
   out.has_sequence = binding->has_sequence;
   out.sequence = binding->has_sequence ? extractRawBits(binding->sequence, frame.data) : 0;

@@ -67,6 +67,21 @@ double decodeSignal(const DbcSignal& s, const Payload& data) {
   return raw * s.factor + s.offset;
 }
 
+bool atFullScale(const DbcSignal& s, const Payload& data) {
+  if (s.maximum > s.minimum) {
+    const double value = decodeSignal(s, data);
+    if (value <= s.minimum || value >= s.maximum) return true;
+  }
+  if (s.length < 2 || s.length > 63) return false;  // a flag or a full 64-bit field: no scale
+  if (s.is_signed) {
+    const std::int64_t raw = extractRaw(s, data);
+    const std::int64_t top = (std::int64_t{1} << (s.length - 1)) - 1;
+    return raw == top || raw == -top - 1;
+  }
+  const std::uint64_t raw = extractRawBits(s, data);
+  return raw == lowMask(s.length) || (raw == 0 && s.offset < 0.0);
+}
+
 void insertRawBits(const DbcSignal& s, std::uint64_t raw_bits, Payload& data) {
   if (signalBytesNeeded(s) == 0) return;
   const std::uint64_t mask = lowMask(s.length);

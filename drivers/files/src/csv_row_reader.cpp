@@ -1,6 +1,7 @@
 #include "headingd/files/csv_row_reader.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstring>
 
@@ -46,13 +47,25 @@ CsvRowReader::CsvRowReader(const std::string& path, const std::vector<std::strin
   std::string_view line;
   if (!lines_.next(&line)) throw CsvError(path + ": empty file, expected a header line");
   for (auto field : splitFields(line)) header_.emplace_back(trim(field));
+  // A column named twice leaves it unclear which one holds the data: refused, not the first taken.
   auto find = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(header_.begin(), header_.end(), name) - header_.begin());
+    const auto first = std::find(header_.begin(), header_.end(), name);
+    if (first != header_.end()) {
+      if (const auto second = std::find(first + 1, header_.end(), name); second != header_.end()) {
+        throw CsvError(path + ":1: column '" + name + "' is named twice in the header (fields " +
+                       std::to_string(first - header_.begin() + 1) + " and " +
+                       std::to_string(second - header_.begin() + 1) + "): which one holds the data is not clear");
+      }
+    }
+    return static_cast<std::size_t>(first - header_.begin());
   };
   for (const auto& name : required) {
     const std::size_t index = find(name);
     if (index == header_.size()) {
-      throw CsvError(path + ":1: header has no column '" + name + "' (header line required, e.g. t,gyr_x,...)");
+      const auto like = headerNameLike(name);
+      throw CsvError(
+          path + ":1: header has no column '" + name + "'" +
+          (like ? " (it has '" + *like + "': names are case-sensitive)" : " (header line required, e.g. t,gyr_x,...)"));
     }
     column_names_.push_back(name);
     field_of_slot_.push_back(index);
@@ -71,6 +84,18 @@ CsvRowReader::CsvRowReader(const std::string& path, const std::vector<std::strin
     if (slot_of_field >= 0) fast_path_ = false;  // a column asked for twice: one field, two slots
     slot_of_field = static_cast<int>(slot);
   }
+}
+
+std::optional<std::string> CsvRowReader::headerNameLike(const std::string& name) const {
+  const auto same_ignoring_case = [&](const std::string& field) {
+    return field.size() == name.size() && std::equal(field.begin(), field.end(), name.begin(), [](char a, char b) {
+             return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+           });
+  };
+  for (const auto& field : header_) {
+    if (field != name && same_ignoring_case(field)) return field;
+  }
+  return std::nullopt;
 }
 
 std::optional<std::size_t> CsvRowReader::slot(const std::string& name) const {

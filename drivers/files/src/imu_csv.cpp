@@ -4,8 +4,8 @@
 
 namespace headingd::files {
 
-std::vector<core::ImuSample> readImuCsv(const std::string& path) {
-  ImuCsvReader reader(path);
+std::vector<core::ImuSample> readImuCsv(const std::string& path, MagColumns mag) {
+  ImuCsvReader reader(path, mag);
   std::vector<core::ImuSample> samples;
   core::ImuSample sample;
   while (reader.next(&sample)) samples.push_back(sample);

@@ -5,13 +5,38 @@
 #include "headingd/files/numeric_csv.hpp"
 
 namespace headingd::files {
+namespace {
 
-ImuCsvReader::ImuCsvReader(const std::string& path)
-    : csv_(path, {"t", "gyr_x", "gyr_y", "gyr_z", "acc_x", "acc_y", "acc_z"}, {"mag_x", "mag_y", "mag_z"}),
-      has_mag_(csv_.columns().size() == 10) {}
+const std::vector<std::string> kMagColumnNames = {"mag_x", "mag_y", "mag_z"};
+
+// "'mag_z'", and where the header has the name in another case, why it was not taken.
+std::string columnAndLookAlike(const CsvRowReader& csv, const std::string& name) {
+  std::string text = "'" + name + "'";
+  if (const auto like = csv.headerNameLike(name)) text += " (the header has '" + *like + "': names are case-sensitive)";
+  return text;
+}
+
+}  // namespace
+
+ImuCsvReader::ImuCsvReader(const std::string& path, MagColumns mag)
+    : csv_(path, {"t", "gyr_x", "gyr_y", "gyr_z", "acc_x", "acc_y", "acc_z"},
+           mag == MagColumns::kRequired ? kMagColumnNames : std::vector<std::string>{}),
+      has_mag_(csv_.columns().size() == 10) {
+  if (mag == MagColumns::kIgnored || has_mag_) return;
+  std::string missing;
+  int count = 0;
+  for (const auto& name : kMagColumnNames) {
+    if (csv_.slot(name)) continue;
+    missing += (missing.empty() ? "" : ", ") + columnAndLookAlike(csv_, name);
+    ++count;
+  }
+  throw CsvError(path + ":1: header lacks the magnetometer's column" + (count > 1 ? "s " : " ") + missing +
+                 "; a 6-axis recording is read only when declared so (headingd-replay --no-mag, [imu_csv] "
+                 "no_mag = true)");
+}
 
 bool ImuCsvReader::next(core::ImuSample* sample) {
-  const std::size_t columns = csv_.columns().size();  // 7 to 10: a partial mag_* set is read, unused
+  const std::size_t columns = csv_.columns().size();  // 7, or 10 with the magnetometer
   if (!csv_.next(std::span<double>(row_.data(), columns))) return false;
   const double t = row_[0];
   if (!std::isfinite(t)) {

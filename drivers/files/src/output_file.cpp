@@ -27,6 +27,15 @@ mode_t newFileMode() {
 
 OutputFile::OutputFile(const std::string& path) : path_(path), final_path_(path) {
   if (path.empty()) throw FileError("an output file name is empty");
+  if (path == "-") {  // the convention of Unix tools: standard output, written directly
+    const int fd = ::fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 0);
+    file_ = fd < 0 ? nullptr : ::fdopen(fd, "w");
+    if (file_ == nullptr) {
+      if (fd >= 0) ::close(fd);
+      throw FileError("-: cannot write to standard output: " + errnoText());
+    }
+    return;
+  }
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
     if (S_ISDIR(st.st_mode)) throw FileError(path + ": is a directory, expected an output file name");

@@ -141,7 +141,13 @@ void GpsdClient::onLine(std::string_view line, std::int64_t receive_ns) {
     ++counters_.tpv_reports;
     if (!tpv->missing.empty()) {
       ++counters_.missing_fields;
-      if (on_problem_) on_problem_("missing_fields", "TPV without " + tpv->missing + ": " + excerpt(line));
+      // gpsd always sends the mode: a TPV without one does not say whether it is a fix at all.
+      const bool usable = tpv->missing != "mode";
+      if (on_problem_) {
+        on_problem_("missing_fields",
+                    "TPV without " + tpv->missing + (usable ? "" : " (not used)") + ": " + excerpt(line));
+      }
+      if (!usable) return;
     }
     merger_.addTpv(tpv->fix, receive_ns);
   } else if (const auto* sky = std::get_if<SkyReport>(&report)) {

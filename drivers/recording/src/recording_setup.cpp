@@ -55,6 +55,7 @@ RecordingSetup loadRecordingSetup(const std::string& folder_in) {
     core::TomlTableReader d(daemon, config_path, "daemon");
     if (const std::string wmm = d.string("wmm", ""); !wmm.empty()) s.wmm_path = inFolder(s.folder, wmm);
     if (const std::string cal = d.string("calibration", ""); !cal.empty()) s.calibration_path = inFolder(s.folder, cal);
+    if (d.has("gps_date_seed")) s.gps_date_seed = d.number("gps_date_seed", 0.0, 1900.0, 2200.0, "year");
   }
   return s;
 }

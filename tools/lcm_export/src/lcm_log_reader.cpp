@@ -1,5 +1,6 @@
 #include "headingd/lcm_export/lcm_log_reader.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -74,6 +75,12 @@ bool LcmLogReader::next(LcmLogEvent& event) {
                                  std::to_string(kMaxDataBytes) + ")");
   }
   const std::uint64_t body = static_cast<std::uint64_t>(channel_bytes) + static_cast<std::uint64_t>(data_bytes);
+  // Checked against what the file holds before anything is allocated: a corrupt length within
+  // the bounds above would otherwise cost up to 256 MiB (and bad_alloc under a memory limit).
+  if (file_size_ > 0 && body > file_size_ - std::min(offset_, file_size_)) {
+    throw LcmLogError(start, "truncated event: it needs " + std::to_string(kLcmLogEventHeaderBytes + body) +
+                                 " bytes, the file ends after " + std::to_string(file_size_ - start));
+  }
   event.channel.resize(static_cast<std::size_t>(channel_bytes));
   event.data.resize(static_cast<std::size_t>(data_bytes));
   if (!readExactly(event.channel.data(), event.channel.size()) || !readExactly(event.data.data(), event.data.size())) {

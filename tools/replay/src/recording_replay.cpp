@@ -70,12 +70,14 @@ void printRecordingCounters(const recording::RecordingReader& reader, const core
       stderr,
       "{\"recording_complete\":%s,\"can_frames\":%llu,\"can_flushes\":%llu,\"imu_samples\":%llu,"
       "\"imu_dropped_live\":%llu,\"gps_epochs\":%llu,\"gps_epochs_not_placed\":%llu,\"gps_values_ignored\":%llu,"
+      "\"gps_dates_not_believed\":%llu,"
       "\"calibration_reloads\":%llu,\"lost_lines\":%llu,\"bad_lines\":%llu,\"start_missing\":%s}\n",
       reader.complete() ? "true" : "false", static_cast<unsigned long long>(c.can_frames),
       static_cast<unsigned long long>(c.can_flushes), static_cast<unsigned long long>(c.imu_samples),
       static_cast<unsigned long long>(c.imu_dropped_live), static_cast<unsigned long long>(c.gps_epochs),
       static_cast<unsigned long long>(c.gps_epochs_not_placed),
       static_cast<unsigned long long>(pipeline.gpsValuesIgnored()),
+      static_cast<unsigned long long>(pipeline.gpsDatesNotBelieved()),
       static_cast<unsigned long long>(c.calibration_reloads), static_cast<unsigned long long>(c.lost_lines),
       static_cast<unsigned long long>(c.bad_lines), c.start_missing ? "true" : "false");
   if (!c.first_bad_line.empty())
@@ -98,6 +100,7 @@ int replayRecording(const RecordingReplayOptions& options) {
   }
   core::HeadingPipeline pipeline(setup.estimator, wmm ? &*wmm : nullptr);
   if (setup.place && wmm) usePlace(pipeline, *setup.place, *wmm);
+  if (setup.gps_date_seed) pipeline.seedGpsDate(*setup.gps_date_seed);
   recording::RecordingReader reader(setup);
 
   std::unique_ptr<ReplayCsvWriter> rows;
@@ -140,6 +143,7 @@ int replayRecording(const RecordingReplayOptions& options) {
   if (estimates) estimates->close();
   printCounters(pipeline.estimator().counters(), totals);
   printRecordingCounters(reader, pipeline);
+  printSensorUnits(pipeline);
   return 0;
 }
 

@@ -22,10 +22,19 @@ void printMagCalibration(const core::MagCalibrationFit& fit) {
                fit.calibrationInUse() ? "true" : "false");
 }
 
+void printSensorUnits(const core::HeadingPipeline& pipeline) {
+  const std::string units = pipeline.sensorUnits().describe();
+  if (!units.empty())
+    std::fprintf(stderr, "headingd-replay: warning: IMU samples not in SI units? %s\n", units.c_str());
+}
+
 void printGps(const files::NmeaEpochs& gps, const core::HeadingPipeline& pipeline) {
-  std::fprintf(stderr, "{\"gps_epochs\":%zu,\"gps_epochs_used_for_declination\":%llu,\"gps_values_ignored\":%llu",
+  std::fprintf(stderr,
+               "{\"gps_epochs\":%zu,\"gps_epochs_used_for_declination\":%llu,\"gps_values_ignored\":%llu,"
+               "\"gps_dates_not_believed\":%llu",
                gps.epochs.size(), static_cast<unsigned long long>(pipeline.gpsEpochsUsedForDeclination()),
-               static_cast<unsigned long long>(pipeline.gpsValuesIgnored()));
+               static_cast<unsigned long long>(pipeline.gpsValuesIgnored()),
+               static_cast<unsigned long long>(pipeline.gpsDatesNotBelieved()));
   nmea::forEachCounter(gps.counters, [](const char* name, std::uint64_t v) {
     std::fprintf(stderr, ",\"nmea_%s\":%llu", name, static_cast<unsigned long long>(v));
   });

@@ -11,7 +11,9 @@
 #include "headingd/core/epoch_compass.hpp"
 #include "headingd/core/estimator.hpp"
 #include "headingd/core/gait_mount_yaw.hpp"
+#include "headingd/core/gps_date_check.hpp"
 #include "headingd/core/gps_observation.hpp"
+#include "headingd/core/sensor_units_check.hpp"
 #include "headingd/core/wmm.hpp"
 
 namespace headingd::core {
@@ -43,7 +45,9 @@ class HeadingPipeline {
 
   SampleVerdict process(const ImuSample& sample);
   // Values it cannot use (non-finite, a latitude beyond ±90°, a negative speed or HDOP, a
-  // variation beyond ±180°) are left out of the epoch and counted: gpsValuesIgnored().
+  // variation beyond ±180°) are left out of the epoch and counted: gpsValuesIgnored(). A date
+  // the model should not be evaluated on (gps_date_check.hpp) is counted there and in
+  // gpsDatesNotBelieved(); the model is evaluated on the date in use instead.
   // Returns what the first value left out was (for a log line), nullptr when all were used.
   const char* processGps(const GpsObservation& gps);
 
@@ -51,11 +55,17 @@ class HeadingPipeline {
   // gives the reference field and the WMM declination until a GPS fix gives a position. False
   // (and nothing changes) without a model or where its field is not finite.
   bool setPlace(const GeodeticPosition& position, double decimal_year);
+  // The date GPS dates are checked against until one is believed (gps_date_check.hpp): the
+  // system's at start-up. False (nothing changes) without a model or outside its validity.
+  bool seedGpsDate(double decimal_year);
 
   const HeadingOutput& output() const { return out_; }
   const Estimator& estimator() const { return estimator_; }
   std::uint64_t gpsEpochsUsedForDeclination() const { return course_minus_heading_.epochs(); }
   std::uint64_t gpsValuesIgnored() const { return gps_values_ignored_; }
+  // Whether the samples look like SI units (sensor_units_check.hpp).
+  const SensorUnitsCheck& sensorUnits() const { return units_; }
+  std::uint64_t gpsDatesNotBelieved() const { return gps_dates_ ? gps_dates_->notBelieved() : 0; }
 
  private:
   bool courseGatesPass(const GpsObservation& gps, double sensor_heading) const;
@@ -84,6 +94,8 @@ class HeadingPipeline {
   double previous_sensor_heading_rad_ = 0.0;
   bool previous_epoch_added_ = false;  // the previous GPS epoch counted for the declination
   std::uint64_t gps_values_ignored_ = 0;
+  std::optional<GpsDateCheck> gps_dates_;  // with a model
+  SensorUnitsCheck units_;
 };
 
 }  // namespace headingd::core

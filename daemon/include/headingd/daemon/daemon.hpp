@@ -52,6 +52,7 @@ class Daemon {
   // [place]: its date chosen (the system's when the table gives none), what the WMM says
   // there logged.
   void usePlace();
+  void seedGpsDate();  // [daemon] gps_date_seed from the system clock when it is absent
   void makeRecorder();
   void startRecorder();
 

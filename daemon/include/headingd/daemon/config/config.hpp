@@ -46,6 +46,10 @@ struct DaemonConfig {
   bool publish_on_imu = false;   // [daemon] publish = "imu": also publish as each IMU sample arrives
   std::string wmm_path;          // World Magnetic Model coefficients ("" = none)
   std::string calibration_path;  // IMU calibration (headingd-calibrate --out; "" = none), re-read on SIGHUP
+  // [daemon] gps_date_seed: the date GPS dates are checked against until one is believed
+  // (core/gps_date_check.hpp). The daemon fills it in at start-up from the system clock when a
+  // source is live and [place] gives no date, so a recording replays it exactly.
+  std::optional<double> gps_date_seed;
   // [place]: where the WMM is evaluated until a GPS fix. The daemon fills in the date at
   // start-up when the table gives none (Daemon::Daemon), so a recording replays it exactly.
   std::optional<core::ConfiguredPlace> place;

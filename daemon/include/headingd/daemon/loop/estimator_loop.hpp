@@ -123,6 +123,7 @@ class EstimatorLoop {
   std::int64_t start_ns_ = 0;
   ImuFreshness imu_;
   bool consumed_this_tick_ = false;
+  bool units_told_ = false;  // the sensor units check's verdict logged
 
   // Timing.
   std::uint64_t ticks_ = 0;

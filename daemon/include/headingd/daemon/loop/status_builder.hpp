@@ -60,8 +60,12 @@ struct LoopCounters {
   std::uint64_t gps_epochs = 0;  // GPS epochs that went into the estimator
   std::uint64_t gps_epochs_used_for_declination = 0;
   std::uint64_t gps_epochs_forced_out = 0;  // went in early: too many held (never expected)
-  std::uint64_t gps_values_ignored = 0;     // unusable GPS values left out (HeadingPipeline::processGps)
-  std::uint64_t log_write_errors = 0;       // the log file could not be written (logging.hpp)
+  std::uint64_t gps_dates_not_believed = 0;
+  // 1 when the first seconds' samples do not look like SI units (core/sensor_units_check.hpp).
+  std::uint64_t units_suspect_accel = 0, units_suspect_gyro = 0,
+                units_suspect_mag = 0;   // of those, dates (core/gps_date_check.hpp)
+  std::uint64_t gps_values_ignored = 0;  // unusable GPS values left out (HeadingPipeline::processGps)
+  std::uint64_t log_write_errors = 0;    // the log file could not be written (logging.hpp)
 };
 
 // "ok", "degraded" (see `reason`) or "starting" (no estimate yet); `reason` is empty unless

@@ -16,6 +16,7 @@
 #include "headingd/can/socketcan_receiver.hpp"
 #include "headingd/daemon/loop/ring_entries.hpp"
 #include "headingd/daemon/sources/asio_source.hpp"
+#include "headingd/daemon/sources/can_assembler_report.hpp"
 #include "headingd/daemon/sources/source_registry.hpp"
 #include "headingd/daemon/sources/wall_to_monotonic.hpp"
 #include "headingd/recording/stream_recorders.hpp"
@@ -56,6 +57,7 @@ class CanImuSource final : public AsioSource<can::AssemblerCounters> {
   can::DbcDatabase dbc_;
   std::unique_ptr<can::ImuFrameCodec> codec_;
   std::unique_ptr<can::EpochAssembler> assembler_;
+  FullScaleWarning full_scale_warning_;
   std::int64_t flush_age_ns_ = 0;  // can/epoch_flush.hpp
   std::unique_ptr<can::SocketCanReceiver> receiver_;
   std::unique_ptr<recording::CanStreamRecorder> recorder_;  // null: not recording

@@ -33,6 +33,7 @@
 #include "headingd/can/imu_frame_codec.hpp"
 #include "headingd/daemon/loop/ring_entries.hpp"
 #include "headingd/daemon/sources/asio_source.hpp"
+#include "headingd/daemon/sources/can_assembler_report.hpp"
 #include "headingd/daemon/sources/playback_clock.hpp"
 #include "headingd/daemon/sources/source_registry.hpp"
 
@@ -90,6 +91,7 @@ class CandumpLogSource final : public AsioSource<can::AssemblerCounters> {
   can::DbcDatabase dbc_;
   std::unique_ptr<can::ImuFrameCodec> codec_;
   std::unique_ptr<can::EpochAssembler> assembler_;
+  FullScaleWarning full_scale_warning_;
   std::int64_t flush_age_ns_ = 0;
   std::vector<can::CanFrame> frames_;  // in file order, outliers left out
   std::vector<std::int64_t> play_ns_;  // per frame: its time on the playback axis (log_frame_times.hpp)

@@ -30,7 +30,7 @@ class GpsdGpsSource final : public GpsFixSource<gpsd::GpsdClient> {
  private:
   void onProblem(std::string_view kind, const std::string& detail);
 
-  RepeatLimiter problem_log_{5, 10.0};  // io thread
+  RepeatLimiter problem_log_{10, 10.0};  // io thread
 };
 
 }  // namespace headingd::daemon

@@ -34,6 +34,7 @@ struct ImuCsvSourceConfig : SourceConfig {
   // true: the file's times moved by one constant onto CLOCK_MONOTONIC (speed 1 only), the
   // axis of the live sources, so a recording can run beside a live GPS ([gps]).
   bool monotonic_time = false;
+  bool no_mag = false;  // read no magnetometer (files::MagColumns::kIgnored)
 
   bool onMonotonicClock() const override { return monotonic_time; }
   std::unique_ptr<Source> createSource(SourceContext& context) const override;

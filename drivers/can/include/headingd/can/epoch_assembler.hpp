@@ -44,7 +44,29 @@ struct AssemblerCounters {
   std::uint64_t wrong_length_frames = 0;  // mapped id, length differs from the DBC
   std::uint64_t remote_frames = 0;        // remote requests with a mapped id
   std::uint64_t error_frames = 0;         // kernel error frames passed in (decoded by the receiver)
+  std::uint64_t full_scale_values = 0;    // axis values at their signal's full scale (saturated; used as read)
 };
+
+// Calls fn(name, value) for the counters a STATUS report shows, in a fixed order, with stable
+// snake_case names (not frames and decoded_frames: each source counts the frames it reads).
+template <class Fn>
+void forEachCounter(const AssemblerCounters& a, Fn&& fn) {
+  fn("samples", a.samples);
+  fn("samples_with_mag", a.samples_with_mag);
+  fn("incomplete_epochs", a.incomplete_epochs);
+  fn("sequence_gaps", a.sequence_gaps);
+  fn("missing_epochs", a.missing_epochs);
+  fn("reordered_epochs", a.reordered_epochs);
+  fn("duplicate_frames", a.duplicate_frames);
+  fn("late_frames", a.late_frames);
+  fn("late_mag_frames", a.late_mag_frames);
+  fn("unknown_id_frames", a.unknown_id_frames);
+  fn("wrong_length_frames", a.wrong_length_frames);
+  fn("error_frames", a.error_frames);
+  fn("superseded_mag_frames", a.superseded_mag);
+  fn("remote_frames", a.remote_frames);
+  fn("full_scale_values", a.full_scale_values);
+}
 
 struct AssembledSamples {
   int count = 0;  // 0, 1 or 2 (a frame can close one epoch and complete the next)

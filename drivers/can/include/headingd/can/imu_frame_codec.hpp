@@ -48,6 +48,7 @@ struct IdFilter {
 struct DecodedFrame {
   std::uint16_t axis_mask = 0;
   std::array<double, kAxisCount> values{};  // SI, valid where axis_mask has the bit
+  std::uint16_t full_scale_mask = 0;        // axes read at their signal's full scale (atFullScale)
   bool has_sequence = false;
   std::uint64_t sequence = 0;
   const MessageBinding* message = nullptr;

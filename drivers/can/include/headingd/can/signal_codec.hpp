@@ -21,6 +21,11 @@ std::uint64_t extractRawBits(const DbcSignal& signal, const Payload& data);
 // Physical value: raw * factor + offset.
 double decodeSignal(const DbcSignal& signal, const Payload& data);
 
+// Whether the signal reads its full scale: the largest code its bits hold, the smallest when
+// that stands for a negative value (signed, or an offset below zero), or the DBC's [min|max]
+// where it gives one. A sensor pinned there saturated: what it measured was larger.
+bool atFullScale(const DbcSignal& signal, const Payload& data);
+
 // Writes `raw_bits` (the low `length` bits are used) into the signal's position.
 void insertRawBits(const DbcSignal& signal, std::uint64_t raw_bits, Payload& data);
 

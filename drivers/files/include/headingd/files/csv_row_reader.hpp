@@ -27,6 +27,8 @@ class CsvRowReader {
   // Where column `name` is in a row's values, if it is read.
   std::optional<std::size_t> slot(const std::string& name) const;
   const std::vector<std::string>& header() const { return header_; }
+  // A header field that is `name` in another case ("mag_Z" for "mag_z"), for error messages.
+  std::optional<std::string> headerNameLike(const std::string& name) const;
 
   // Reads the next data row into `values` (columns().size() of them). False at the end of
   // the file. Blank lines are skipped. Throws CsvError naming file, line and column for a

@@ -6,6 +6,7 @@
 
 #include "headingd/core/imu_sample.hpp"
 #include "headingd/files/csv_row_reader.hpp"
+#include "headingd/files/imu_csv.hpp"
 
 namespace headingd::files {
 
@@ -16,11 +17,11 @@ inline constexpr double kMaxImuCsvTimeS = 9e9;
 class ImuCsvReader {
  public:
   // Opens the file and reads its header; throws CsvError (file, line 1, column) when a
-  // required column is missing.
-  explicit ImuCsvReader(const std::string& path);
+  // required column is missing, or the mag_* columns are not there as `mag` asks (imu_csv.hpp).
+  explicit ImuCsvReader(const std::string& path, MagColumns mag = MagColumns::kRequired);
 
-  // The next sample in file order; false at the end of the file. Without all three mag_*
-  // columns every sample has has_mag = false. Throws CsvError naming file, line and column
+  // The next sample in file order; false at the end of the file. With MagColumns::kIgnored
+  // every sample has has_mag = false. Throws CsvError naming file, line and column
   // for a malformed row or a time that is not finite or beyond ±kMaxImuCsvTimeS.
   bool next(core::ImuSample* sample);
   bool hasMag() const { return has_mag_; }

@@ -20,7 +20,7 @@ class OutputFile {
   // Creates the temporary file; throws FileError naming `path`. An existing `path` that is not
   // a regular file (/dev/null, a FIFO, a terminal) is written directly: it cannot be replaced,
   // and it holds no earlier result to protect. A symbolic link is followed: its target is
-  // replaced, not the link.
+  // replaced, not the link. "-" is standard output, written directly.
   explicit OutputFile(const std::string& path);
   // Not committed: the temporary file is removed, `path` is untouched.
   ~OutputFile();

@@ -44,7 +44,7 @@ struct GpsdCounters {
   std::uint64_t sky_reports = 0;
   std::uint64_t other_reports = 0;   // VERSION, DEVICES, WATCH, ... (read and ignored)
   std::uint64_t malformed = 0;       // not JSON, no class, a field of the wrong type
-  std::uint64_t missing_fields = 0;  // TPV without mode, or a 2D/3D fix without lat/lon
+  std::uint64_t missing_fields = 0;  // TPV without mode (not used), or a 2D/3D fix without lat/lon
   std::uint64_t epochs = 0;          // fixes delivered
   std::uint64_t late_reports = 0;    // TPVs of an epoch already delivered
   std::uint64_t connect_attempts = 0;

@@ -24,6 +24,7 @@ struct RecordingSetup {
   std::optional<core::ConfiguredPlace> place;  // the [place] table, with the date the run took
   std::string wmm_path;                        // in the folder; "" = the run had none
   std::string calibration_path;                // in the folder; "" = none
+  std::optional<double> gps_date_seed;         // [daemon] gps_date_seed as the run used it
 };
 
 // Reads header.toml and config.toml of `folder`. Throws core::ConfigError (file:line, key)

@@ -17,7 +17,8 @@ inline constexpr const char* kFileRules =
     "Files: inputs must be regular files (a FIFO, a device or a directory is refused) within a size limit "
     "by kind: TOML configuration and calibration 1 MiB, WMM coefficients 4 MiB, DBC 16 MiB, NMEA captures read "
     "whole 1 GiB (gzip: the inflated text); CSV and log lines up to 1 MiB each. Outputs are written to a "
-    "temporary file in the same folder and renamed into place when complete.";
+    "temporary file in the same folder and renamed into place when complete; an output named - is standard "
+    "output.";
 
 // Parses; returns the status to exit with when the program must stop here (0 after --help or
 // --version, kExitBadArguments after printing what is wrong), nothing when it goes on.
