@@ -34,6 +34,12 @@ constexpr double kAttitudeStepRad = 0.1;
 // of Algorithm 2's 1000·I, which would let the first accelerometer samples throw it around.
 const Mat4 kStartupCovariance = 0.05 * 0.05 * Mat4::Identity();
 
+// MARU's and AGU's least noise per axis of a sample (rotated_field_update.hpp): a sensor's
+// resolution leaves about a count/√12 even where a window's samples happen to repeat
+// (magnetometers 0.06-0.3 µT per count, accelerometers 0.6-2.4 mg).
+constexpr double kMinMagSampleNoiseUT = 0.05;
+constexpr double kMinAccelSampleNoiseM_S2 = 0.005;
+
 // The gravity update's turns measure a bias only after this many of the tilt's time constants
 // since it started afresh: before, they correct the start.
 constexpr double kBiasSettleTimeConstants = 5.0;
@@ -84,7 +90,9 @@ Estimator::Estimator(const EstimatorParams& params)
       qsf_accel_({p_.qsf_accel_window_s, p_.qsf_accel_reference_s, p_.qsf_accel_max_norm_rms_m_s2,
                   p_.qsf_accel_max_norm_deviation_m_s2, p_.qsf_accel_max_direction_rms_m_s2}),
       qsf_mag_update_({p_.qsf_mag_update_noise_uT, p_.mag_residual_hard_iron_uT, p_.field_update_max_nis}),
-      mau_({p_.mau_noise_uT, p_.mau_interval_s, p_.mau_verify_max_rad, p_.field_update_max_nis}) {}
+      mau_({p_.mau_noise_uT, p_.mau_interval_s, p_.mau_verify_max_rad, p_.field_update_max_nis}),
+      maru_({p_.maru_baseline_s, p_.mag_residual_hard_iron_uT, kMinMagSampleNoiseUT, p_.field_update_max_nis}),
+      agu_({p_.agu_baseline_s, p_.agu_residual_accel_bias_m_s2, kMinAccelSampleNoiseM_S2, p_.field_update_max_nis}) {}
 
 SampleVerdict Estimator::process(const ImuSample& s) {
   out_.dt_s = 0.0;
@@ -119,6 +127,8 @@ SampleVerdict Estimator::process(const ImuSample& s) {
       qsf_accel_.restart();
       qsf_mag_dt_s_ = 0.0;
       qsf_mag_update_.restart();
+      maru_.restart();
+      agu_.restart();
       if (!initialised_) break;  // nothing estimated yet: the output stays invalid
       heading_corrections_.restart(vertical_rate_error_.rateRadS());
       ekf_.setCovariance(kStartupCovariance);
@@ -234,6 +244,7 @@ void Estimator::step(const ImuSample& s, double dt_s, bool mag_usable) {
   out_.mag_gain = 0.0;
   out_.mau_applied = false;
   out_.qsf_mag_update_applied = false;
+  out_.maru_applied = false;
   mag_prefilter_.advance(increment);
   mag_disturbance_.advance(increment);
   mag_sample_dt_s_ += dt_s;
@@ -331,13 +342,16 @@ void Estimator::correctHeading(const Vec3& mag_uT, double field_period_s, double
 void Estimator::applyFieldUpdates(const Vec3& filtered_uT, const Vec3& sample_uT, double field_period_s,
                                   bool new_field_sample) {
   // MAU on the low-passed field the observer used (its error is the calibration's, not the
-  // sample's noise); the QSF update on each new sample (MAGYQ's white noise per sample).
+  // sample's noise); the QSF update and MARU on each new sample (MAGYQ's white noise per sample).
   if (out_.mag_used) {
     out_.mau_applied = mau_.update(ekf_, filtered_uT, field_period_s, heading_uncertainty_.sigmaRad());
   }
-  if (new_field_sample && heading_aligned_) {
-    // Standing: the level, and a specific force that stands still too (quasi_static_field_update.hpp).
-    const bool standing = motion_.level() == MotionLevel::kStanding && out_.accel_quasi_static;
+  if (!new_field_sample) return;
+  // Standing: the level, and a specific force that stands still too (quasi_static_field_update.hpp).
+  const bool standing = motion_.level() == MotionLevel::kStanding && out_.accel_quasi_static;
+  out_.maru_applied = maru_.update(bias_, sample_uT, qsf_frame_.frameFromSensor(),
+                                   out_.mag_quasi_static && standing && !bias_.atRest(), qsf_mag_.sampleNoiseSigma());
+  if (heading_aligned_) {
     out_.qsf_mag_update_applied =
         qsf_mag_update_.update(ekf_, sample_uT, qsf_frame_.frameFromSensor(), out_.mag_quasi_static && standing,
                                !out_.mag_used, qsf_field_interval_s_, heading_uncertainty_.rateSigmaRadS()) != 0.0;
@@ -347,7 +361,15 @@ void Estimator::applyFieldUpdates(const Vec3& filtered_uT, const Vec3& sample_uT
 bool Estimator::detectQuasiStaticFields(const ImuSample& s, const Quat& increment, const Vec3& accel_now,
                                         const Vec3& mag_now, bool mag_usable, double dt_s) {
   qsf_frame_.advance(increment);
+  maru_.advance(qsf_frame_.frameFromSensor(), dt_s);
+  agu_.advance(qsf_frame_.frameFromSensor(), dt_s);
   out_.accel_quasi_static = qsf_accel_.add(accel_now, qsf_frame_.frameFromSensor(), dt_s);
+  // AGU on every sample of the specific force (rotated_field_update.hpp): quasi-static while the
+  // person stands, and not at rest (still blocks measure the bias there).
+  out_.agu_applied =
+      agu_.update(bias_, accel_now, qsf_frame_.frameFromSensor(),
+                  out_.accel_quasi_static && motion_.level() == MotionLevel::kStanding && !bias_.atRest(),
+                  qsf_accel_.sampleNoiseSigma());
   // A magnetometer slower than the IMU repeats its last sample: only a new one is a sample
   // of the field (a held one would count one reading's noise again).
   qsf_mag_dt_s_ += dt_s;
@@ -445,6 +467,10 @@ EstimatorCounters Estimator::counters() const {
   c.mau_updates = mau_.counters().applied;
   c.mau_updates_rejected = mau_.counters().rejected_by_gate;
   c.mau_updates_unverified = mau_.counters().rejected_by_verification;
+  c.maru_updates = maru_.counters().applied;
+  c.maru_updates_rejected = maru_.counters().rejected_by_gate;
+  c.agu_updates = agu_.counters().applied;
+  c.agu_updates_rejected = agu_.counters().rejected_by_gate;
   return c;
 }
 

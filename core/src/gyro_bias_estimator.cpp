@@ -195,6 +195,16 @@ void GyroBiasEstimator::addPrior(const Vec3& bias_rad_s, const Mat3& covariance)
   settle();
 }
 
+bool GyroBiasEstimator::addMeasurement(const Linearised<3>& measurement, double max_nis) {
+  const Mat3 H = measurement.jacobian.block<3, 3>(0, error_state::kGyroBias);
+  const Mat3 S = H * P_ * H.transpose() + measurement.noise_covariance;
+  const Vec3& innovation = measurement.residual;
+  if (innovation.dot(S.ldlt().solve(innovation)) > max_nis) return false;
+  state_.correct<3>(H, S, innovation);
+  settle();
+  return true;
+}
+
 void GyroBiasEstimator::settle() {
   // A larger estimate means rest or motion was misjudged: keep it at the plausible edge.
   state_.clampTo(p_.bias_max_rad_s);

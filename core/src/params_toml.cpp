@@ -112,6 +112,9 @@ const std::vector<ParamSpec>& estimatorParamSpecs() {
       {"qsf_mag_update_noise_uT", &P::qsf_mag_update_noise_uT, 0.0, 1000.0, "uT"},
       {"mau_noise_uT", &P::mau_noise_uT, 0.0, 1000.0, "uT"},
       {"mau_interval_s", &P::mau_interval_s, 0.0, 3600.0, "s"},
+      {"maru_baseline_s", &P::maru_baseline_s, 0.0, 600.0, "s"},
+      {"agu_baseline_s", &P::agu_baseline_s, 0.0, 600.0, "s"},
+      {"agu_residual_accel_bias_m_s2", &P::agu_residual_accel_bias_m_s2, 0.0, 100.0, "m/s^2"},
       {"mau_verify_max_rad", &P::mau_verify_max_rad, 0.0, 3.15, "rad"},
       {"field_update_max_nis", &P::field_update_max_nis, 0.0, 1e6, "1"},
   };

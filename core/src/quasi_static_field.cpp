@@ -184,6 +184,10 @@ double QuasiStaticFieldDetector::directionNoise2() const {
   return std::max(0.0, sum_carried_step2_ / (2.0 * static_cast<double>(size_ - 1)));
 }
 
+double QuasiStaticFieldDetector::sampleNoiseSigma() const {
+  return size_ > 1 ? std::sqrt(directionNoise2() / 3.0) : 0.0;
+}
+
 double QuasiStaticFieldDetector::directionMeanSquare() const {
   // The spread about the mean: mean |c|² - |mean c|².
   const double n = static_cast<double>(size_);

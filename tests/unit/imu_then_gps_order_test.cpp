@@ -83,7 +83,7 @@ TEST(ImuThenGpsOrder, EpochsHandedOutAreNotHandedOutAgain) {
 }
 
 // A counter added to EstimatorCounters goes into forEachCounter too (and into this test).
-static_assert(sizeof(EstimatorCounters) == 24 * sizeof(std::uint64_t));
+static_assert(sizeof(EstimatorCounters) == 28 * sizeof(std::uint64_t));
 
 TEST(EstimatorCounters, ForEachCounterListsEveryCounterOnce) {
   EstimatorCounters c;
@@ -112,17 +112,21 @@ TEST(EstimatorCounters, ForEachCounterListsEveryCounterOnce) {
                            &c.qsf_mag_updates_rejected,
                            &c.mau_updates,
                            &c.mau_updates_rejected,
-                           &c.mau_updates_unverified}) {
+                           &c.mau_updates_unverified,
+                           &c.maru_updates,
+                           &c.maru_updates_rejected,
+                           &c.agu_updates,
+                           &c.agu_updates_rejected}) {
     *f = v++;
   }
   std::vector<std::pair<std::string, std::uint64_t>> list;
   forEachCounter(c, [&](const char* name, std::uint64_t value) { list.emplace_back(name, value); });
-  ASSERT_EQ(list.size(), 24u);
+  ASSERT_EQ(list.size(), 28u);
   for (std::size_t i = 0; i < list.size(); ++i) EXPECT_EQ(list[i].second, i + 1) << list[i].first;
   EXPECT_EQ(list.front().first, "accepted");
   EXPECT_EQ(list[8].first, "out_of_range_mag");
   EXPECT_EQ(list[14].first, "accel_clipped");
-  EXPECT_EQ(list.back().first, "mau_updates_unverified");
+  EXPECT_EQ(list.back().first, "agu_updates_rejected");
 }
 
 }  // namespace

@@ -225,15 +225,19 @@ void printReferenceDelays(const std::vector<Row>& rows) {
 // How often the updates from the field's direction fired (issue 29), where one is on.
 void printFieldUpdates(const std::vector<Row>& rows) {
   std::printf(
-      "\nfield updates per minute (quasi_static_field_update.hpp, magnetic_attitude_update.hpp): QSF applied "
-      "/ rejected by the gate, MAU applied / rejected by the gate / not verified by the magnetic frame\n");
-  std::printf("%-46s %7s | %8s %8s | %8s %8s %8s\n", "run", "Hz", "qsf", "qsf.rej", "mau", "mau.rej", "mau.unv");
+      "\nfield updates per minute (quasi_static_field_update.hpp, magnetic_attitude_update.hpp, "
+      "rotated_field_update.hpp): QSF applied / rejected by the gate, MAU applied / rejected by the gate / "
+      "not verified by the magnetic frame, MARU and AGU applied / rejected by the gate\n");
+  std::printf("%-46s %7s | %8s %8s | %8s %8s %8s | %8s %8s | %8s %8s\n", "run", "Hz", "qsf", "qsf.rej", "mau",
+              "mau.rej", "mau.unv", "maru", "maru.rej", "agu", "agu.rej");
   for (const Row& row : rows) {
     const auto& c = row.counters;
     const auto perMinute = [&](std::uint64_t n) { return static_cast<double>(n) / row.minutes; };
-    std::printf("%-46s %7.1f | %8.1f %8.1f | %8.1f %8.1f %8.1f\n", row.name.c_str(), row.rate_hz,
-                perMinute(c.qsf_mag_updates), perMinute(c.qsf_mag_updates_rejected), perMinute(c.mau_updates),
-                perMinute(c.mau_updates_rejected), perMinute(c.mau_updates_unverified));
+    std::printf("%-46s %7.1f | %8.1f %8.1f | %8.1f %8.1f %8.1f | %8.1f %8.1f | %8.1f %8.1f\n", row.name.c_str(),
+                row.rate_hz, perMinute(c.qsf_mag_updates), perMinute(c.qsf_mag_updates_rejected),
+                perMinute(c.mau_updates), perMinute(c.mau_updates_rejected), perMinute(c.mau_updates_unverified),
+                perMinute(c.maru_updates), perMinute(c.maru_updates_rejected), perMinute(c.agu_updates),
+                perMinute(c.agu_updates_rejected));
   }
 }
 
@@ -531,7 +535,10 @@ int main(int argc, char** argv) {
     if (!anchors.empty()) printSideBySide(rows, rates, anchors);
     if (reference_delays) printReferenceDelays(rows);
     if (quasi_static) printQuasiStatic(rows);
-    if (params.qsf_mag_update_noise_uT > 0.0 || params.mau_noise_uT > 0.0) printFieldUpdates(rows);
+    if (params.qsf_mag_update_noise_uT > 0.0 || params.mau_noise_uT > 0.0 || params.maru_baseline_s > 0.0 ||
+        params.agu_baseline_s > 0.0) {
+      printFieldUpdates(rows);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "headingd-study: %s\n", e.what());
     return 1;

@@ -34,6 +34,7 @@
 #include "headingd/core/net_turn.hpp"
 #include "headingd/core/quasi_static_field.hpp"
 #include "headingd/core/quasi_static_field_update.hpp"
+#include "headingd/core/rotated_field_update.hpp"
 #include "headingd/core/sample_gate.hpp"
 #include "headingd/core/turn_blended_low_pass.hpp"
 #include "headingd/core/vector_delay_estimator.hpp"
@@ -88,6 +89,10 @@ struct EstimatorOutput {
   // (the heading, while the observer sets the field aside).
   bool mau_applied = false;
   bool qsf_mag_update_applied = false;
+  // A quasi-static field's change corrected the gyro's bias: MARU (the magnetic field), AGU (the
+  // specific force) (rotated_field_update.hpp).
+  bool maru_applied = false;
+  bool agu_applied = false;
 };
 
 struct EstimatorCounters {
@@ -108,6 +113,10 @@ struct EstimatorCounters {
   std::uint64_t mau_updates = 0;
   std::uint64_t mau_updates_rejected = 0;    // by the innovation gate
   std::uint64_t mau_updates_unverified = 0;  // by the magnetic frame's check
+  std::uint64_t maru_updates = 0;            // of the gyro bias (rotated_field_update.hpp)
+  std::uint64_t maru_updates_rejected = 0;   // by the innovation gate
+  std::uint64_t agu_updates = 0;
+  std::uint64_t agu_updates_rejected = 0;
 };
 
 // Calls fn(name, value) for every counter, in a fixed order, with stable snake_case names:
@@ -139,6 +148,10 @@ void forEachCounter(const EstimatorCounters& c, Fn&& fn) {
   fn("mau_updates", c.mau_updates);
   fn("mau_updates_rejected", c.mau_updates_rejected);
   fn("mau_updates_unverified", c.mau_updates_unverified);
+  fn("maru_updates", c.maru_updates);
+  fn("maru_updates_rejected", c.maru_updates_rejected);
+  fn("agu_updates", c.agu_updates);
+  fn("agu_updates_rejected", c.agu_updates_rejected);
 }
 
 // A value: a copy carries on independently from the same state (its parts hold their own
@@ -242,6 +255,8 @@ class Estimator {
   double qsf_field_interval_s_ = 0.0;  // between the last two new field samples
   QuasiStaticFieldUpdate qsf_mag_update_;
   MagneticAttitudeUpdate mau_;
+  RotatedFieldUpdate maru_;
+  RotatedFieldUpdate agu_;
   bool initialised_ = false;
   bool heading_aligned_ = false;
   EstimatorOutput out_;

@@ -51,6 +51,7 @@
 #include "headingd/core/drifting_bias.hpp"
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/low_pass.hpp"
+#include "headingd/core/measurement_model.hpp"
 #include "headingd/core/quaternion.hpp"
 #include "headingd/core/rest_detector.hpp"
 
@@ -78,6 +79,12 @@ class GyroBiasEstimator {
   // forward filter's final estimate for the offline smoother's backward one): a measurement
   // y = bias with that covariance, H = I.
   void addPrior(const Vec3& bias_rad_s, const Mat3& covariance);
+
+  // A measurement model's linearisation (measurement_model.hpp) whose prediction depends on the
+  // gyro's bias, as MARU's and AGU's (rotated_field_update.hpp): its gyro-bias columns are H, its
+  // residual the innovation. One whose normalised innovation squared exceeds max_nis changes
+  // nothing. Returns whether it was applied.
+  bool addMeasurement(const Linearised<3>& measurement, double max_nis);
 
   const Vec3& bias() const { return bias_; }
   bool atRest() const { return rest_.atRest(); }

@@ -76,6 +76,9 @@ class QuasiStaticFieldDetector {
   double referenceNorm() const { return reference_norm_; }  // ξ_ref of the current period
   double periodSeconds() const { return in_period_ ? period_s_ : 0.0; }
   std::size_t windowSamples() const { return size_; }  // field samples in the window now
+  // The white noise per axis that the window's successive samples show (field unit; 0 until
+  // the window holds two).
+  double sampleNoiseSigma() const;
   std::uint64_t periods() const { return periods_; }
   double totalSeconds() const { return total_s_; }
 
