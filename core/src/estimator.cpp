@@ -107,7 +107,13 @@ SampleVerdict Estimator::process(const ImuSample& s) {
         initialise(s, mag_usable);
       }
       break;
-    case SampleVerdict::kFirst: initialise(s, mag_usable); break;
+    case SampleVerdict::kFirst:
+      if (initialised_) {
+        publish(s.t_ns);  // the first sample after reverseTime: it opens the new time axis
+      } else {
+        initialise(s, mag_usable);
+      }
+      break;
     case SampleVerdict::kGap:
     case SampleVerdict::kClockJump:
       // The gyro cannot be integrated across the hole, so the attitude may have turned by
@@ -141,6 +147,26 @@ SampleVerdict Estimator::process(const ImuSample& s) {
     default: break;  // skipped and counted by the gate; the output stays as it was
   }
   return verdict;
+}
+
+void Estimator::reverseTime() {
+  const Estimator fresh(p_);
+  gate_ = fresh.gate_;
+  bias_.reverseTime();
+  vertical_rate_error_.restore(-vertical_rate_error_.rateRadS());
+  heading_corrections_.restart(vertical_rate_error_.rateRadS());
+  mag_delay_ = fresh.mag_delay_;
+  accel_delay_ = fresh.accel_delay_;
+  mag_sample_dt_s_ = 0.0;
+  qsf_frame_ = fresh.qsf_frame_;
+  qsf_mag_ = fresh.qsf_mag_;
+  qsf_accel_ = fresh.qsf_accel_;
+  qsf_last_mag_uT_ = fresh.qsf_last_mag_uT_;
+  qsf_mag_dt_s_ = 0.0;
+  qsf_field_interval_s_ = 0.0;
+  qsf_mag_update_.restart();
+  maru_.restart();
+  agu_.restart();
 }
 
 void Estimator::initialise(const ImuSample& s, bool mag_usable) {

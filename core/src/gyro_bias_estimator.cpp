@@ -189,12 +189,6 @@ void GyroBiasEstimator::updateFromWindow() {
   settle();
 }
 
-void GyroBiasEstimator::addPrior(const Vec3& bias_rad_s, const Mat3& covariance) {
-  const Vec3 innovation = bias_rad_s - state_.bias();
-  state_.correct<3>(Mat3::Identity(), state_.covariance() + covariance, innovation);
-  settle();
-}
-
 bool GyroBiasEstimator::addMeasurement(const Linearised<3>& measurement, double max_nis) {
   const Mat3 H = measurement.jacobian.block<3, 3>(0, error_state::kGyroBias);
   const Mat3 S = H * P_ * H.transpose() + measurement.noise_covariance;
@@ -203,6 +197,16 @@ bool GyroBiasEstimator::addMeasurement(const Linearised<3>& measurement, double 
   state_.correct<3>(H, S, innovation);
   settle();
   return true;
+}
+
+void GyroBiasEstimator::reverseTime() {
+  state_.negate();
+  settle();
+  rest_ = RestDetector(p_);
+  before_last_block_ = {state_, rest_seconds_, still_blocks_, {}, false};
+  has_previous_outlier_ = false;
+  window_s_ = measuring_s_ = since_update_s_ = 0.0;
+  window_turn_rad_.setZero();
 }
 
 void GyroBiasEstimator::settle() {

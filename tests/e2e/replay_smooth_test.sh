@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # headingd-replay --smooth on one BROAD trial, as a user runs it: one row per input row with
-# the documented header, the same bytes twice, the heading the causal filter's, and the
-# inclination smoothed well below the causal filter's (fast combined motion: 1.43 deg causal,
-# 0.81 smoothed when this was written); --nmea is refused as a bad argument.
+# the documented header, the same bytes twice, the heading no worse than the causal filter's
+# (fast combined motion: 2.02 deg causal, 1.97 smoothed when this was written) and the
+# inclination well below it (1.43 deg causal, 0.81 smoothed); --nmea is refused as a bad argument.
 set -euo pipefail
 source "$(dirname "$0")/../support/broad_trial_test.sh" "$@"
 
@@ -20,7 +20,7 @@ smooth=$("$eval" --estimates "$work/smooth.csv" --reference "$trial")
 echo "causal:   $causal"
 echo "smoothed: $smooth"
 awk -v c="$(figure heading_rmse_deg "$causal")" -v s="$(figure heading_rmse_deg "$smooth")" \
-  'BEGIN { exit !(s > c - 0.01 && s < c + 0.01) }' || { echo "the smoothed heading is not the causal one"; exit 1; }
+  'BEGIN { exit !(s > 0 && s < c + 0.01) }' || { echo "the smoothed heading is worse than the causal one"; exit 1; }
 awk -v c="$(figure inclination_rmse_deg "$causal")" -v s="$(figure inclination_rmse_deg "$smooth")" \
   'BEGIN { exit !(s > 0 && s < 0.75 * c) }' || { echo "inclination not smoothed below 0.75 x the causal filter's"; exit 1; }
 

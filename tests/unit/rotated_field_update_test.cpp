@@ -8,8 +8,8 @@
 
 #include "headingd/core/estimator_params.hpp"
 #include "headingd/core/gyro_bias_estimator.hpp"
-#include "headingd/core/rotated_field_update.hpp"
 #include "headingd/core/quasi_static_field.hpp"
+#include "headingd/core/rotated_field_update.hpp"
 #include "test_support.hpp"
 
 namespace headingd::core {
@@ -46,8 +46,7 @@ HandTurning turnInTheHand(double baseline_s, double field_step_rad = 0.0, double
     q_nb = q_nb * gyroIncrement(rate, kDt);
     const Vec3 gyro = rate + kTrueBias + rng.gaussian(0.003);
     const Vec3 accel = q_nb.conjugate() * Vec3(0.0, 0.0, -9.81) + rng.gaussian(0.02);
-    const Vec3 field_ned =
-        Eigen::AngleAxisd(t >= field_step_s ? field_step_rad : 0.0, Vec3::UnitZ()) * kStaticFieldNed;
+    const Vec3 field_ned = Eigen::AngleAxisd(t >= field_step_s ? field_step_rad : 0.0, Vec3::UnitZ()) * kStaticFieldNed;
     const Vec3 field = q_nb.conjugate() * field_ned + rng.gaussian(kFieldNoiseUT);
     bias.update(gyro, accel, nullptr, kDt);
     frame.advance(gyroIncrement(gyro - bias.bias(), kDt));

@@ -66,7 +66,7 @@ TEST(TwoFilterSmoother, TwoAttitudesAreWeighedByTheirCovariances) {
 // (3 m/s² forward for 2 s, the sensor level; then still and turning slowly). Forward, the
 // tilt starts from what the accelerometer reads, 17° off, and leaves it with its time
 // constants; backward, it arrives at the push settled, and the push pulls it only for as
-// long as it lasts. The heading stays the forward one.
+// long as it lasts.
 TEST(TwoFilterSmoother, TheSmoothedTiltDoesNotInheritABadStart) {
   test::Random rng(3);
   const Vec3 field_ned(20.0, 0.0, 45.0);
@@ -99,8 +99,8 @@ TEST(TwoFilterSmoother, TheSmoothedTiltDoesNotInheritABadStart) {
   for (std::size_t i = 0; i < samples.size(); ++i) {
     forward.process(samples[i]);
     ASSERT_TRUE(smoothed[i].valid);
-    // The heading: the forward filter's, with its variance.
-    EXPECT_NEAR(smoothed[i].covariance_ned(2, 2), std::pow(forward.output().heading_sigma_rad, 2), 1e-12);
+    // The heading's variance: never more than the forward filter's (the smaller of the two).
+    EXPECT_LE(smoothed[i].covariance_ned(2, 2), std::pow(forward.output().heading_sigma_rad, 2) * (1.0 + 1e-12));
     if (i > 500) continue;  // the first 5 s
     const double f = inclination(forward.output().q_nb, truth[i]);
     const double s = inclination(smoothed[i].q_nb, truth[i]);

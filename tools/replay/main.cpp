@@ -147,8 +147,8 @@ int main(int argc, char** argv) {
   auto* smooth_option = app.add_flag(
       "--smooth", smooth,
       "offline smoothing: the estimator forward and over the samples reversed in time, each sample's two attitudes "
-      "fused by their covariances (core/two_filter_smoother.hpp): the tilt smoothed, the heading and "
-      "heading_sigma_deg the forward filter's; the same columns. Reads the whole CSV into memory (about 220 "
+      "fused by their covariances (core/two_filter_smoother.hpp): tilt and heading smoothed, heading_sigma_deg "
+      "the smaller of the two filters'; the same columns. Reads the whole CSV into memory (about 220 "
       "bytes per sample: 78 MB per hour at 100 Hz); not with --nmea or --recording. The counters are the forward "
       "filter's");
   smooth_option->excludes(recording_option);
@@ -220,7 +220,8 @@ int main(int argc, char** argv) {
       return true;
     };
     if (smooth) {
-      const replay::SmoothedReplay smoothed = replay::smoothSamples(nextSample, params, writer);
+      // The pipeline's estimator before any sample: with --place, the reference field it gives.
+      const replay::SmoothedReplay smoothed = replay::smoothSamples(nextSample, pipeline.estimator(), writer);
       writer.close();
       replay::printCounters(smoothed.forward_counters, smoothed.totals);
       if (calibrated) replay::printMagCalibration(calibration.magFit());

@@ -6,16 +6,16 @@
 
 namespace headingd::replay {
 
-SmoothedReplay smoothSamples(const std::function<bool(core::ImuSample*)>& next_sample,
-                             const core::EstimatorParams& params, ReplayCsvWriter& out) {
+SmoothedReplay smoothSamples(const std::function<bool(core::ImuSample*)>& next_sample, const core::Estimator& start,
+                             ReplayCsvWriter& out) {
   std::vector<core::ImuSample> samples;
   core::ImuSample sample;
   while (next_sample(&sample)) samples.push_back(sample);
 
   SmoothedReplay result;
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<core::AttitudeEstimate> smoothed = core::smoothAttitudes(samples, params, &result.forward_counters);
-  result.totals.estimator_time = std::chrono::steady_clock::now() - start;
+  const auto began = std::chrono::steady_clock::now();
+  const std::vector<core::AttitudeEstimate> smoothed = core::smoothAttitudes(samples, start, &result.forward_counters);
+  result.totals.estimator_time = std::chrono::steady_clock::now() - began;
   result.totals.rows = samples.size();
 
   // As the causal replay writes them: the x-axis yaw and its sigma; NaN before any estimate.

@@ -54,6 +54,10 @@ class DriftingBias {
   // becomes that much less certain.
   void openUp(const Vec3& change) { P_.topLeftCorner<3, 3>() += change * change.transpose(); }
 
+  // The same sensor with its rate's sign turned (time run backwards: the offline smoother's
+  // second filter): the bias turns sign, its uncertainty stays.
+  void negate() { x_ = -x_; }
+
   // Keeps |b̂| at most max_rad_s, by moving the constant part.
   void clampTo(double max_rad_s);
 

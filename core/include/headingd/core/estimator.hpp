@@ -178,8 +178,13 @@ class Estimator {
   const QuasiStaticFieldDetector& magQuasiStatic() const { return qsf_mag_; }
   const QuasiStaticFieldDetector& accelQuasiStatic() const { return qsf_accel_; }
 
-  // What is known of the gyro bias from elsewhere (GyroBiasEstimator::addPrior).
-  void addGyroBiasPrior(const Vec3& bias_rad_s, const Mat3& covariance) { bias_.addPrior(bias_rad_s, covariance); }
+  // Time runs backwards from the next sample on (the offline smoother's second filter carries on
+  // from the first: two_filter_smoother.hpp). The next sample opens a new time axis without
+  // starting afresh: the attitude, its covariance, the heading's sigma, what the field's
+  // disturbance tests learned and the vectors' low-passes carry on; the gyro's bias and the
+  // observer's vertical rate turn sign; the delays (which the smoother's reversed samples are
+  // shifted by), the quasi-static periods and the observer's correction sums start afresh.
+  void reverseTime();
 
   // The Earth's field where the device is (WMM at the GPS position): enables the absolute
   // strength and dip tests of the disturbance detection (Henriksson §4.2).

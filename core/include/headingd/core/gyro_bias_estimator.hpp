@@ -75,16 +75,16 @@ class GyroBiasEstimator {
   // EKF, so the turns it causes are no noisier.)
   void addTiltCorrection(const Eigen::Vector2d& turn_rad, const Quat& q_nb, double dt_s, bool measures_bias);
 
-  // What is known of the bias from elsewhere (another run over the same sensor, e.g. the
-  // forward filter's final estimate for the offline smoother's backward one): a measurement
-  // y = bias with that covariance, H = I.
-  void addPrior(const Vec3& bias_rad_s, const Mat3& covariance);
-
   // A measurement model's linearisation (measurement_model.hpp) whose prediction depends on the
   // gyro's bias, as MARU's and AGU's (rotated_field_update.hpp): its gyro-bias columns are H, its
   // residual the innovation. One whose normalised innovation squared exceeds max_nis changes
   // nothing. Returns whether it was applied.
   bool addMeasurement(const Linearised<3>& measurement, double max_nis);
+
+  // Time runs backwards from here on (the offline smoother's second filter, carrying on from the
+  // first): the gyro reads -ω, so the bias turns sign; a still block in progress and the last
+  // block's undo are dropped, and the in-motion windows start afresh.
+  void reverseTime();
 
   const Vec3& bias() const { return bias_; }
   bool atRest() const { return rest_.atRest(); }

@@ -1,20 +1,21 @@
 #pragma once
 // Offline smoothing for recordings analysed afterwards: the estimator run forward over the
-// samples and, as a second filter, forward over the same samples reversed in time; each
-// sample's two tilts fused by their covariances (the two-filter smoother of Fraser & Potter
-// 1969; for an EKF the same result as Rauch-Tung-Striebel to first order). Each filter is the
-// causal estimator unchanged, and one that has just started (the forward one near the start,
-// the backward one near the end) says so through its covariance and counts less. The backward
-// one starts from the forward one's gyro bias (its prior: GyroBiasEstimator::addPrior), which
-// the recording's opening rest may have measured and its end cannot (without it the simulated
-// phone classes were worse smoothed than forward).
+// samples and, as a second filter, over the same samples reversed in time; each sample's two
+// attitudes fused by their covariances (the two-filter smoother of Fraser & Potter 1969; for an
+// EKF the same result as Rauch-Tung-Striebel to first order). Each filter is the causal
+// estimator. The backward one carries on from the forward one's end (Estimator::reverseTime):
+// it starts with the gyro bias, the heading and the field's references the whole recording
+// taught. A fresh backward filter starts in whatever field the recording ends in, with nothing
+// before it to show a magnet's field as a disturbance: its heading, fused, made the shared phone
+// recordings with magnets on the path worse (iphone_magnets 3.40 -> 4.68 deg fitted;
+// docs/smoother.md).
 //
-// The heading is the forward filter's. Fused too, it made the shared phone recordings with
-// magnets on the path worse than the forward filter alone (iphone_magnets 3.40 -> 4.68 deg
-// fitted): the backward filter starts in whatever field the recording ends in, with nothing
-// before it to show a magnet's field as a disturbance, and states a heading sigma of 3-7 deg
-// while 20-25 deg off (docs/smoother.md). Heading fusion waits for a heading sigma that knows
-// an unverified start.
+// Both filters have then seen the forward pass: their estimates are correlated by an amount
+// nobody knows, and the fused covariance would count that pass twice. The tilt is fused by the
+// two covariances as they are (the tilt forgets its past within its time constant); the
+// backward heading counts with its variance inflated (kBackwardHeadingVarianceFactor, chosen
+// for the worst recording, two_filter_smoother.cpp), and the heading variance stated is the
+// smaller of the two, not the fused one.
 //
 // Time reversal (timeReversedSample): the reversed sample k stands for the original i = n-1-k at
 // time t_last - t_i + t_first; a gyro sample is the mean rate over the interval that ends at
@@ -30,8 +31,7 @@
 // The covariance of each attitude is taken about the NED axes: the EKF's tilt block about
 // north and east (AttitudeEkf::tiltCovariance) and the heading sigma's square about down
 // (heading_uncertainty.hpp); the two are independent by construction (the heading is the
-// observer's, the tilt the EKF's). fuseAttitudes fuses all three; the smoother gives the
-// backward heading an unknown variance, so that only the tilt moves.
+// observer's, the tilt the EKF's). fuseAttitudes fuses all three.
 #include <vector>
 
 #include "headingd/core/estimator.hpp"
@@ -65,12 +65,18 @@ struct VectorShifts {
 // Sample k of the recording reversed in time (see the top).
 ImuSample timeReversedSample(const std::vector<ImuSample>& samples, std::size_t k, const VectorShifts& shifts = {});
 
-// One estimate per sample (invalid where neither filter had one yet): the fused tilt, the
-// forward heading and its variance. Memory: the samples and one estimate per sample (its
-// quaternion and covariance, 112 bytes), nothing else.
-// forward_counters, if given, gets the forward filter's counters (the samples it accepted,
-// its still blocks, ...: what a replay of the same samples reports).
-std::vector<AttitudeEstimate> smoothAttitudes(const std::vector<ImuSample>& samples, const EstimatorParams& params,
+// One estimate per sample (invalid where neither filter had one yet): the fused tilt and
+// heading, the heading's variance the smaller of the two filters' (see the top). Memory: the samples and one estimate
+// per sample (its quaternion and covariance, 112 bytes), nothing else. forward_counters, if given, gets the forward
+// filter's counters (the samples it accepted, its still blocks, ...: what a replay of the same samples reports). start:
+// the estimator both filters begin from, before any sample (with its parameters, and the reference field where one is
+// known: Estimator::setReferenceField).
+std::vector<AttitudeEstimate> smoothAttitudes(const std::vector<ImuSample>& samples, const Estimator& start,
                                               EstimatorCounters* forward_counters = nullptr);
+inline std::vector<AttitudeEstimate> smoothAttitudes(const std::vector<ImuSample>& samples,
+                                                     const EstimatorParams& params,
+                                                     EstimatorCounters* forward_counters = nullptr) {
+  return smoothAttitudes(samples, Estimator(params), forward_counters);
+}
 
 }  // namespace headingd::core

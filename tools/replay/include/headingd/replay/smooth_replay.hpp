@@ -15,7 +15,8 @@ struct SmoothedReplay {
   core::EstimatorCounters forward_counters;
 };
 
-SmoothedReplay smoothSamples(const std::function<bool(core::ImuSample*)>& next_sample,
-                             const core::EstimatorParams& params, ReplayCsvWriter& out);
+// start: the estimator both filters begin from (its parameters; the --place reference field).
+SmoothedReplay smoothSamples(const std::function<bool(core::ImuSample*)>& next_sample, const core::Estimator& start,
+                             ReplayCsvWriter& out);
 
 }  // namespace headingd::replay
