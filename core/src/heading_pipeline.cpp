@@ -235,15 +235,19 @@ void HeadingPipeline::updateDeclination() {
   out_.declination_sigma_rad = declination.sigma_rad;
 }
 
+void HeadingOutput::setMagneticHeading(double heading_rad, double sigma_rad) {
+  heading_mag_rad = heading_rad;
+  heading_true_rad = wrapAngle(heading_mag_rad - mount_yaw_rad + declination_rad);
+  heading_mag_sigma_rad = sigma_rad;
+  // The three errors are independent: the field's, the gait's and the declination sources'.
+  heading_true_sigma_rad =
+      std::sqrt(heading_mag_sigma_rad * heading_mag_sigma_rad + mount_yaw_sigma_rad * mount_yaw_sigma_rad +
+                declination_sigma_rad * declination_sigma_rad);
+}
+
 void HeadingPipeline::updateOutput() {
   out_.attitude = estimator_.output();
-  out_.heading_mag_rad = out_.attitude.yaw_rad;
-  out_.heading_true_rad = wrapAngle(out_.heading_mag_rad - out_.mount_yaw_rad + out_.declination_rad);
-  out_.heading_mag_sigma_rad = out_.attitude.heading_sigma_rad;
-  // The three errors are independent: the field's, the gait's and the declination sources'.
-  out_.heading_true_sigma_rad = std::sqrt(out_.heading_mag_sigma_rad * out_.heading_mag_sigma_rad +
-                                          out_.mount_yaw_sigma_rad * out_.mount_yaw_sigma_rad +
-                                          out_.declination_sigma_rad * out_.declination_sigma_rad);
+  out_.setMagneticHeading(out_.attitude.yaw_rad, out_.attitude.heading_sigma_rad);
 }
 
 }  // namespace headingd::core

@@ -220,8 +220,8 @@ int main(int argc, char** argv) {
       return true;
     };
     if (smooth) {
-      // The pipeline's estimator before any sample: with --place, the reference field it gives.
-      const replay::SmoothedReplay smoothed = replay::smoothSamples(nextSample, pipeline.estimator(), writer);
+      // The pipeline before any sample: with --place, its reference field and declination.
+      const replay::SmoothedReplay smoothed = replay::smoothSamples(nextSample, pipeline, writer);
       writer.close();
       replay::printCounters(smoothed.forward_counters, smoothed.totals);
       if (calibrated) replay::printMagCalibration(calibration.magFit());

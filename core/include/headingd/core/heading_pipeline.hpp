@@ -36,6 +36,10 @@ struct HeadingOutput {
   // that with the mounting yaw's and the declination's (∞ while no declination is known).
   double heading_mag_sigma_rad = 0.0;
   double heading_true_sigma_rad = 0.0;
+
+  // The magnetic heading and its sigma, and the true heading and its sigma from them with the
+  // declination and the mounting yaw already here.
+  void setMagneticHeading(double heading_rad, double sigma_rad);
 };
 
 class HeadingPipeline {

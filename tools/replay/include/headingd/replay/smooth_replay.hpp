@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "headingd/core/estimator.hpp"
+#include "headingd/core/heading_pipeline.hpp"
 #include "headingd/replay/replay_csv_writer.hpp"
 #include "headingd/replay/replay_loop.hpp"
 
@@ -15,8 +16,10 @@ struct SmoothedReplay {
   core::EstimatorCounters forward_counters;
 };
 
-// start: the estimator both filters begin from (its parameters; the --place reference field).
-SmoothedReplay smoothSamples(const std::function<bool(core::ImuSample*)>& next_sample, const core::Estimator& start,
-                             ReplayCsvWriter& out);
+// start: the pipeline before any sample: its estimator is where both filters begin (its
+// parameters; the --place reference field), and its declination (--place) turns each smoothed
+// heading into a true one.
+SmoothedReplay smoothSamples(const std::function<bool(core::ImuSample*)>& next_sample,
+                             const core::HeadingPipeline& start, ReplayCsvWriter& out);
 
 }  // namespace headingd::replay
