@@ -50,7 +50,8 @@ std::string SensorUnitsCheck::describe() const {
   }
   if (mag_suspect_) {
     std::snprintf(line, sizeof line,
-                  "the magnetometer's mean norm over the first %.0f s is %.3g, not 10-200 uT (in gauss? nT?); ",
+                  "the magnetometer's mean norm over the first %.0f s is %.3g, outside the 5-500 uT that Earth's field "
+                  "gives even near steel (in gauss? nT?); ",
                   seconds_, mag_sum_ / mag_seconds_);
     text += line;
   }

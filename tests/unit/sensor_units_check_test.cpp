@@ -43,7 +43,9 @@ TEST(SensorUnitsCheck, OtherUnitsAreSuspectedAndNamed) {
   EXPECT_NE(in_g.describe().find("the accelerometer's mean norm over the first 10 s is 1"), std::string::npos)
       << in_g.describe();
   EXPECT_NE(in_g.describe().find("(in g?)"), std::string::npos);
-  EXPECT_TRUE(checked(9.81, 0.5, 0.5).magSuspect());      // gauss
+  const SensorUnitsCheck in_gauss = checked(9.81, 0.5, 0.5);
+  EXPECT_TRUE(in_gauss.magSuspect());
+  EXPECT_NE(in_gauss.describe().find("is 0.5, outside the 5-500 uT"), std::string::npos) << in_gauss.describe();
   EXPECT_TRUE(checked(9.81, 50000.0, 0.5).magSuspect());  // nT
   EXPECT_TRUE(checked(9.81, 50.0, 28.6).gyroSuspect());   // 0.5 rad/s read as °/s
   EXPECT_FALSE(checked(9.81, 50.0, 0.5).gyroSuspect());

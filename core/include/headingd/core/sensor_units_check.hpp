@@ -3,7 +3,8 @@
 // force in g (|a| about 1), a field in gauss (about 0.5) or nT (about 50 000), angular rate in
 // degrees per second. Over the first kWindowS seconds of accepted samples the mean norms are
 // compared with what Earth gives: gravity, 9.8 m/s², which a body in motion also averages to
-// within a few m/s²; a field of 22-67 µT, 10-200 µT where it is disturbed indoors. The
+// within a few m/s²; a field of 22-67 µT, 10-200 µT where it is disturbed indoors (suspected
+// outside 5-500 µT: gauss gives about 0.5, nT about 50 000). The
 // angular rate has no such reference (a body at rest reads its bias, one turning anything), so
 // only a mean rate no person reaches (over 20 rad/s, 1150°/s, for seconds: a rate in °/s is 57
 // times too large) is suspected. A diagnostic: the estimates do not change; the daemon logs
